@@ -1,0 +1,37 @@
+// The pliant command: subcommands over the libraries, no logic of its own.
+#include <cstdio>
+#include <exception>
+#include <map>
+
+#include "commands.h"
+#include "pliant/io/input_error.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"pliant — compliance and backlash estimation for the dVRK PSM"};
+  app.set_version_flag("--version", std::string("pliant ") + PLIANT_VERSION);
+  app.require_subcommand(1);
+  std::map<CLI::App*, pliant::cli::Command> commands;
+  auto add = [&](pliant::cli::Command (*make)(CLI::App&)) {
+    const std::size_t before = app.get_subcommands({}).size();
+    pliant::cli::Command run = make(app);
+    commands[app.get_subcommands({})[before]] = std::move(run);
+  };
+  add(pliant::cli::AddCorrectCommand);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : 2;  // usage errors exit 2, like bad input
+  }
+  try {
+    for (auto* sub : app.get_subcommands()) commands.at(sub)();
+  } catch (const pliant::io::InputError& e) {
+    std::fprintf(stderr, "%s\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "pliant: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

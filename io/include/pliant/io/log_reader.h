@@ -1,0 +1,73 @@
+#pragma once
+// Reading canonical logs: streaming in constant memory for online tools,
+// whole-log for offline ones. Every violation of the contract throws
+// InputError with the file, line and column, what is wrong and what to do.
+
+#include <cstddef>
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "pliant/io/input_error.h"
+#include "pliant/io/log.h"
+
+namespace pliant::io {
+
+struct LogReaderOptions {
+  /// Drop rows whose required columns hold NaN/Inf or an empty field, and count
+  /// them, instead of stopping at the first.
+  bool skip_bad_rows = false;
+};
+
+class LogReader {
+ public:
+  /// Opens the file and reads metadata and header. Throws InputError.
+  explicit LogReader(std::string path, LogReaderOptions options = {});
+  ~LogReader();
+  LogReader(const LogReader&) = delete;
+  LogReader& operator=(const LogReader&) = delete;
+
+  const LogHeader& header() const { return header_; }
+  const std::string& path() const { return path_; }
+
+  /// The next data row's values in header column order, or nullptr at the end
+  /// of the file. The pointer stays valid until the next call. Throws InputError.
+  const double* Next();
+
+  /// Line number (from 1) of the row Next() returned last.
+  std::size_t line() const { return line_; }
+  /// Rows Next() has returned so far.
+  std::size_t rows() const { return rows_; }
+  /// Rows dropped under skip_bad_rows.
+  std::size_t skipped_rows() const { return skipped_rows_; }
+
+ private:
+  struct Buffer;
+  bool ReadLine(std::string_view& line);
+  bool ParseRow(std::string_view line);
+  [[noreturn]] void Fail(std::size_t column, std::string problem, std::string fix) const;
+  void ReadHeader();
+  void CheckRanges();
+
+  std::string path_;
+  LogReaderOptions options_;
+  LogHeader header_;
+  std::unique_ptr<Buffer> buffer_;
+  std::vector<double> row_;
+  std::vector<int> required_;  // column index of each required column
+  std::vector<char> is_required_;  // per column in file order: 1 when required
+  std::size_t line_ = 0;
+  std::size_t header_line_ = 0;
+  std::size_t rows_ = 0;
+  std::size_t skipped_rows_ = 0;
+  double last_t_ = 0.0;
+  bool have_last_t_ = false;
+  bool finished_ = false;
+};
+
+/// Reads a whole log. Throws InputError.
+Log ReadLog(const std::string& path, LogReaderOptions options = {});
+
+}  // namespace pliant::io

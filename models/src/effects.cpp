@@ -1,0 +1,99 @@
+// Parameter lists of the built-in effects: names, units, defaults, bounds, priors.
+#include <string>
+
+#include "pliant/models/effects/backlash.h"
+#include "pliant/models/effects/bias_torque.h"
+#include "pliant/models/effects/compliance.h"
+
+namespace pliant::models {
+namespace {
+
+std::string JointName(int j) { return std::to_string(j + 1); }
+
+}  // namespace
+
+BiasTorqueEffect::BiasTorqueEffect() : BiasTorqueEffect({{0.0}, {0.0}}, {{0.0}, {0.0}}) {}
+
+BiasTorqueEffect::BiasTorqueEffect(const BiasTorqueTable& joint1, const BiasTorqueTable& joint2) {
+  angles_[0] = joint1.angle_rad;
+  angles_[1] = joint2.angle_rad;
+  defaults_ = joint1.torque_nm;
+  defaults_.insert(defaults_.end(), joint2.torque_nm.begin(), joint2.torque_nm.end());
+}
+
+std::vector<ParameterSpec> BiasTorqueEffect::Parameters() const {
+  std::vector<ParameterSpec> specs;
+  std::size_t k = 0;
+  for (int j = 0; j < 2; ++j) {
+    for (std::size_t i = 0; i < angles_[j].size(); ++i, ++k) {
+      // Prior: the dVRK effort limit bounds any plausible bias; 0.2 N·m is the
+      // spread of the paper's Fig. 4 across the range.
+      specs.push_back({"tau0_" + JointName(j) + "[" + std::to_string(i) + "]", "N·m",
+                       defaults_[k], -3.316, 3.316, 0.2});
+    }
+  }
+  return specs;
+}
+
+ComplianceEffect::ComplianceEffect() {
+  JointParameters joint1, joint2;
+  joint1.compliance.cubic.coefficients = {639.16, -432.35, 136.32, 3.12};
+  joint2.compliance.cubic.coefficients = {3163.17, -1969.15, 448.92, -6.00};
+  for (JointParameters* joint : {&joint1, &joint2}) {
+    joint->depth_min_m = 0.09;
+    joint->depth_max_m = 0.22;
+  }
+  *this = ComplianceEffect(joint1, joint2);
+}
+
+ComplianceEffect::ComplianceEffect(const JointParameters& joint1, const JointParameters& joint2) {
+  const JointParameters* joints[2] = {&joint1, &joint2};
+  for (int j = 0; j < 2; ++j) {
+    forms_[j] = joints[j]->compliance.form;
+    depth_min_m_[j] = joints[j]->depth_min_m;
+    depth_max_m_[j] = joints[j]->depth_max_m;
+    for (double c : joints[j]->compliance.cubic.coefficients) defaults_.push_back(c);
+  }
+}
+
+std::vector<ParameterSpec> ComplianceEffect::Parameters() const {
+  std::vector<ParameterSpec> specs;
+  static const char* kPowers[4] = {"3", "2", "1", "0"};
+  for (int j = 0; j < 2; ++j) {
+    const bool inverse = forms_[j] == ComplianceForm::kInverseCubic;
+    for (int i = 0; i < 4; ++i) {
+      const double value = defaults_[4 * j + i];
+      std::string unit = inverse ? "N·m/rad/m^" : "rad/(N·m)/m^";
+      unit += kPowers[i];
+      // A cubic fit's coefficients are strongly correlated; the prior is wide
+      // (half the value, at least 1 unit) and the bounds are open.
+      const double sd = std::max(0.5 * std::abs(value), 1.0);
+      specs.push_back({std::string(inverse ? "inv_k" : "k") + JointName(j) + "_c" + kPowers[i],
+                       unit, value, -1e6, 1e6, sd});
+    }
+  }
+  return specs;
+}
+
+BacklashSignEffect::BacklashSignEffect(double delta1_rad, double delta2_rad)
+    : delta_rad_{delta1_rad, delta2_rad} {}
+
+std::vector<ParameterSpec> BacklashSignEffect::Parameters() const {
+  // Prior sd 0.004 rad: the dVRK file's values are 0.007–0.008 rad and the
+  // clearance of an 8 mm instrument in its cannula is of that order.
+  return {{"delta1", "rad", delta_rad_[0], 0.0, 0.05, 0.004},
+          {"delta2", "rad", delta_rad_[1], 0.0, 0.05, 0.004}};
+}
+
+BacklashDeadZoneEffect::BacklashDeadZoneEffect(double delta1_rad, double delta2_rad,
+                                               double width1_nm, double width2_nm)
+    : defaults_{delta1_rad, delta2_rad, width1_nm, width2_nm} {}
+
+std::vector<ParameterSpec> BacklashDeadZoneEffect::Parameters() const {
+  return {{"delta1", "rad", defaults_[0], 0.0, 0.05, 0.004},
+          {"delta2", "rad", defaults_[1], 0.0, 0.05, 0.004},
+          {"width1", "N·m", defaults_[2], 1e-3, 1.0, 0.1},
+          {"width2", "N·m", defaults_[3], 1e-3, 1.0, 0.1}};
+}
+
+}  // namespace pliant::models
