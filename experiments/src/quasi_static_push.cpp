@@ -70,7 +70,7 @@ io::Log GenerateDivotPushLog(const PushScenario& scenario) {
   const double dt = 1.0 / scenario.sample_rate_hz;
   Eigen::Vector2d shaft_offset = Eigen::Vector2d::Zero();  // place inside the clearance, rad
   Eigen::Vector2d previous_q = scenario.tip_angle_rad;
-  double t = 0.0;
+  std::size_t sample = 0;
   int segment = 0;
 
   auto emit = [&](double depth, const Eigen::Vector2d& load, bool tip_fixed) {
@@ -90,13 +90,14 @@ io::Log GenerateDivotPushLog(const PushScenario& scenario) {
     const Eigen::Vector2d tau = bias(bias_values.data(), state) + load;
     const Eigen::Vector2d v = (q - previous_q) / dt;
     previous_q = q;
+    const double t = double(sample) / scenario.sample_rate_hz;
     log.values.insert(log.values.end(),
                       {t, Quantise(q[0], scenario.encoder_count_rad),
                        Quantise(q[1], scenario.encoder_count_rad), depth,
                        tau[0] + effort_noise(rng), tau[1] + effort_noise(rng), v[0], v[1],
                        scenario.tip_angle_rad[0], scenario.tip_angle_rad[1],
                        tip_fixed ? 1.0 : 0.0, double(segment), 35.0 + 0.01 * t});
-    t += dt;
+    ++sample;
   };
 
   const double first_depth =

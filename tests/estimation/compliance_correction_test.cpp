@@ -48,7 +48,7 @@ TEST(Equation2, SubtractsTheBiasTorqueFirst) {
 
 TEST(Equation2, UsesThePapersKAtTheDepth) {
   const ComplianceCorrector paper(models::testing::PaperParameters(), CorrectionModel::kPaper);
-  const auto c = paper.Correct({0.0, 0.0, 0.15}, {0.199 + 1.0, -0.0029045 - 1.0});
+  const auto c = paper.Correct({0.0, 0.0, 0.15}, {0.199 + 1.0, -0.0029145 - 1.0});
   EXPECT_NEAR(c.deflection_rad[0], 0.008478 + 1.0 / 15.99729, 1e-12);
   EXPECT_NEAR(c.deflection_rad[1], -0.007176 - 1.0 / 27.70782375, 1e-12);
   EXPECT_FALSE(c.depth_clamped);
@@ -89,7 +89,7 @@ TEST(DeadZone, AgreesWithEquation2UnderFullLoad) {
   const ComplianceCorrector deadzone(p, CorrectionModel::kDeadZone);
   for (double tau : {-1.5, -0.6, 0.3, 1.0}) {
     const Eigen::Vector3d q(0.2, -0.1, 0.12);
-    const Eigen::Vector2d torque(0.199 + tau, -0.0029045 - tau);
+    const Eigen::Vector2d torque(0.199 + tau, -0.0029145 - tau);
     EXPECT_NEAR((paper.Correct(q, torque).corrected_rad -
                  deadzone.Correct(q, torque).corrected_rad).norm(), 0.0, 1e-15);
   }

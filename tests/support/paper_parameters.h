@@ -13,7 +13,7 @@ inline ModelParameters PaperParameters() {
   p.joints[0].tau_min_nm = p.joints[0].deadzone_width_nm = 0.1;
   p.joints[1].tau_min_nm = p.joints[1].deadzone_width_nm = 0.2;
   p.joints[0].bias_torque = {{-1.588, 1.588}, {0.199, 0.199}};
-  p.joints[1].bias_torque = {{-0.925, 0.925}, {-0.0029045, -0.0029045}};
+  p.joints[1].bias_torque = {{-0.925, 0.925}, {-0.0029145, -0.0029145}};
   for (auto& joint : p.joints) {
     joint.depth_min_m = 0.09;
     joint.depth_max_m = 0.22;

@@ -33,7 +33,8 @@ class LogReader {
   const std::string& path() const { return path_; }
 
   /// The next data row's values in header column order, or nullptr at the end
-  /// of the file. The pointer stays valid until the next call. Throws InputError.
+  /// of the file. The pointer stays valid until the next call. Throws InputError
+  /// for a bad row, and at the end if the log held no usable data row.
   const double* Next();
 
   /// Line number (from 1) of the row Next() returned last.
@@ -48,6 +49,7 @@ class LogReader {
   bool ReadLine(std::string_view& line);
   bool ParseRow(std::string_view line);
   [[noreturn]] void Fail(std::size_t column, std::string problem, std::string fix) const;
+  [[noreturn]] void FailFieldCount(std::size_t fields) const;
   void ReadHeader();
   void CheckRanges();
 
@@ -56,7 +58,7 @@ class LogReader {
   LogHeader header_;
   std::unique_ptr<Buffer> buffer_;
   std::vector<double> row_;
-  std::vector<int> required_;  // column index of each required column
+  std::vector<int> required_;      // column index of each required column
   std::vector<char> is_required_;  // per column in file order: 1 when required
   std::size_t line_ = 0;
   std::size_t header_line_ = 0;

@@ -1,0 +1,61 @@
+#include "pliant/estimation/log_correction.h"
+
+#include <algorithm>
+#include <vector>
+
+#include "pliant/io/log_writer.h"
+
+namespace pliant::estimation {
+namespace {
+
+// Where the log says the tip really was: simulated truth first, else a tracker.
+struct ReferenceColumns {
+  int q1 = -1, q2 = -1;
+  std::string name;
+};
+
+ReferenceColumns FindReference(const io::StandardColumns& c) {
+  if (c.q1_true >= 0 && c.q2_true >= 0) return {c.q1_true, c.q2_true, "q*_true"};
+  if (c.q1_ref >= 0 && c.q2_ref >= 0) return {c.q1_ref, c.q2_ref, "q*_ref"};
+  return {};
+}
+
+}  // namespace
+
+LogCorrectionSummary CorrectLog(const std::string& input_path, const std::string& output_path,
+                                const ComplianceCorrector& corrector,
+                                const std::string& metadata_note, io::LogReaderOptions options) {
+  io::LogReader reader(input_path, options);
+  io::LogHeader header = reader.header();
+  const io::StandardColumns in(header);
+  const std::size_t input_columns = header.columns.size();
+  const int q1_corr = header.AddColumn("q1_corr");
+  const int q2_corr = header.AddColumn("q2_corr");
+  if (!metadata_note.empty()) header.metadata.emplace_back("correction", metadata_note);
+  io::LogWriter writer(output_path, header);
+
+  LogCorrectionSummary summary;
+  const ReferenceColumns reference = FindReference(in);
+  summary.reference = reference.name;
+  std::vector<double> row(header.columns.size());
+  while (const double* values = reader.Next()) {
+    std::copy(values, values + input_columns, row.begin());
+    const Eigen::Vector3d q(values[in.q1], values[in.q2], values[in.q3]);
+    const auto result = corrector.Correct(q, Eigen::Vector2d(values[in.tau1], values[in.tau2]));
+    row[q1_corr] = result.corrected_rad[0];
+    row[q2_corr] = result.corrected_rad[1];
+    writer.Write(row.data());
+    ++summary.rows;
+    summary.depth_clamped_rows += result.depth_clamped;
+    if (!reference.name.empty()) {
+      const Eigen::Vector2d truth(values[reference.q1], values[reference.q2]);
+      summary.uncorrected.Add(q, truth);
+      summary.corrected.Add(Eigen::Vector3d(row[q1_corr], row[q2_corr], q[2]), truth);
+    }
+  }
+  writer.Commit();
+  summary.skipped_rows = reader.skipped_rows();
+  return summary;
+}
+
+}  // namespace pliant::estimation

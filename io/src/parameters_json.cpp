@@ -1,0 +1,298 @@
+#include "pliant/io/parameters_json.h"
+
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <utility>
+#include <vector>
+
+#include "json_locator.h"
+#include "pliant/io/input_error.h"
+
+namespace pliant::io {
+namespace {
+
+using models::ComplianceForm;
+using models::JointParameters;
+using nlohmann::json;
+
+const char kSeeDocs[] = " (docs/parameters.md shows a complete file)";
+
+struct Key {
+  const char* name;
+  bool required;
+};
+
+// "/joint1/compliance/form" -> "joint1.compliance.form", as users think of it.
+std::string Dotted(const std::string& pointer) {
+  if (pointer.empty()) return "the top-level object";
+  std::string out = pointer.substr(1);
+  for (char& c : out) c = c == '/' ? '.' : c;
+  return out;
+}
+
+std::string TypeName(const json& value) { return value.type_name(); }
+
+class Reader {
+ public:
+  Reader(const std::string& text, const std::string& file) : file_(file), locator_(text) {}
+
+  [[noreturn]] void Fail(const std::string& pointer, std::string problem, std::string fix) const {
+    const detail::JsonPosition at = locator_.Find(pointer);
+    throw InputError(file_, at.line, at.column, std::move(problem), std::move(fix));
+  }
+
+  void CheckDuplicates() const {
+    const std::string& pointer = locator_.duplicate();
+    if (pointer.empty()) return;
+    const std::size_t slash = pointer.rfind('/');
+    Fail(pointer,
+         "duplicate key '" + pointer.substr(slash + 1) + "' in " + Dotted(pointer.substr(0, slash)),
+         "keep only one; JSON readers silently use the last and ignore the others");
+  }
+
+  // An object with no key outside `keys` and every required one present.
+  void Object(const json& value, const std::string& pointer, const std::vector<Key>& keys) const {
+    if (!value.is_object()) {
+      Fail(pointer, Dotted(pointer) + " must be an object, found " + TypeName(value),
+           std::string("write it as { ... }") + kSeeDocs);
+    }
+    std::string allowed;
+    for (const Key& key : keys) allowed += (allowed.empty() ? "" : ", ") + std::string(key.name);
+    for (const auto& item : value.items()) {
+      bool known = false;
+      for (const Key& key : keys) known = known || item.key() == key.name;
+      if (!known) {
+        Fail(
+            pointer + "/" + detail::PointerToken(item.key()),
+            "unknown key '" + item.key() + "' in " + Dotted(pointer) + "; allowed keys: " + allowed,
+            "remove the key or correct its spelling");
+      }
+    }
+    for (const Key& key : keys) {
+      if (key.required && !value.contains(key.name)) {
+        Fail(pointer, Dotted(pointer) + " has no key '" + key.name + "'",
+             "add \"" + std::string(key.name) + "\"" + kSeeDocs);
+      }
+    }
+  }
+
+  double Number(const json& value, const std::string& pointer, const char* unit) const {
+    if (!value.is_number()) {
+      Fail(pointer, Dotted(pointer) + " must be a number, found " + TypeName(value),
+           "write a number in " + std::string(unit));
+    }
+    return value.get<double>();
+  }
+
+  // An array of numbers; `size` 0 means any non-empty length.
+  std::vector<double> Numbers(const json& value, const std::string& pointer, std::size_t size,
+                              const char* what) const {
+    if (!value.is_array() || value.empty() || (size != 0 && value.size() != size)) {
+      const std::string found =
+          value.is_array() ? std::to_string(value.size()) + " values" : TypeName(value);
+      Fail(pointer, Dotted(pointer) + " must be an array of " + what + ", found " + found,
+           "write it as [" + std::string(what) + "]");
+    }
+    std::vector<double> out;
+    for (std::size_t i = 0; i < value.size(); ++i) {
+      out.push_back(Number(value[i], pointer + "/" + std::to_string(i), what));
+    }
+    return out;
+  }
+
+  std::string String(const json& value, const std::string& pointer) const {
+    if (!value.is_string()) {
+      Fail(pointer, Dotted(pointer) + " must be a string, found " + TypeName(value),
+           "write it in double quotes");
+    }
+    return value.get<std::string>();
+  }
+
+  // The {"value": ..., "source": ...} wrapper around every scalar.
+  const json& Valued(const json& parent, const std::string& pointer, const char* key,
+                     JointParameters& joint) const {
+    const json& item = parent.at(key);
+    const std::string here = pointer + "/" + key;
+    Object(item, here, {{"value", true}, {"source", false}});
+    Source(item, here, key, joint);
+    return item.at("value");
+  }
+
+  void Source(const json& item, const std::string& pointer, const char* key,
+              JointParameters& joint) const {
+    if (item.contains("source"))
+      joint.sources[key] = String(item.at("source"), pointer + "/source");
+  }
+
+  JointParameters Joint(const json& value, const std::string& pointer) const {
+    Object(value, pointer,
+           {{"bias_torque", true},
+            {"compliance", true},
+            {"backlash_rad", true},
+            {"tau_min_nm", true},
+            {"deadzone_width_nm", false},
+            {"depth_range_m", true}});
+    JointParameters joint;
+    const json& bias = value.at("bias_torque");
+    const std::string bias_at = pointer + "/bias_torque";
+    Object(bias, bias_at, {{"angle_rad", true}, {"torque_nm", true}, {"source", false}});
+    joint.bias_torque.angle_rad =
+        Numbers(bias.at("angle_rad"), bias_at + "/angle_rad", 0, "angles in rad");
+    joint.bias_torque.torque_nm =
+        Numbers(bias.at("torque_nm"), bias_at + "/torque_nm", 0, "torques in N·m");
+    Source(bias, bias_at, "bias_torque", joint);
+
+    const json& compliance = value.at("compliance");
+    const std::string compliance_at = pointer + "/compliance";
+    Object(compliance, compliance_at, {{"form", true}, {"coefficients", true}, {"source", false}});
+    const std::string form = String(compliance.at("form"), compliance_at + "/form");
+    if (form != "inverse_cubic" && form != "direct_cubic") {
+      Fail(compliance_at + "/form", Dotted(compliance_at) + ".form is '" + form + "'",
+           "write \"inverse_cubic\" (the paper's 1/K(L), N·m/rad) or \"direct_cubic\" (K(L), "
+           "rad/(N·m))");
+    }
+    joint.compliance.form =
+        form == "inverse_cubic" ? ComplianceForm::kInverseCubic : ComplianceForm::kDirectCubic;
+    const auto c = Numbers(compliance.at("coefficients"), compliance_at + "/coefficients", 4,
+                           "4 numbers c3, c2, c1, c0");
+    std::copy(c.begin(), c.end(), joint.compliance.cubic.coefficients.begin());
+    Source(compliance, compliance_at, "compliance", joint);
+
+    joint.backlash_rad = Number(Valued(value, pointer, "backlash_rad", joint),
+                                pointer + "/backlash_rad/value", "rad");
+    joint.tau_min_nm =
+        Number(Valued(value, pointer, "tau_min_nm", joint), pointer + "/tau_min_nm/value", "N·m");
+    joint.deadzone_width_nm = joint.tau_min_nm;
+    if (value.contains("deadzone_width_nm")) {
+      joint.deadzone_width_nm = Number(Valued(value, pointer, "deadzone_width_nm", joint),
+                                       pointer + "/deadzone_width_nm/value", "N·m");
+    }
+    const auto range = Numbers(Valued(value, pointer, "depth_range_m", joint),
+                               pointer + "/depth_range_m/value", 2, "2 numbers min, max in m");
+    joint.depth_min_m = range[0];
+    joint.depth_max_m = range[1];
+    return joint;
+  }
+
+  models::ParameterCovariance Covariance(const json& value) const {
+    Object(value, "/covariance", {{"names", true}, {"matrix", true}});
+    models::ParameterCovariance covariance;
+    const json& names = value.at("names");
+    if (!names.is_array()) {
+      Fail("/covariance/names",
+           "covariance.names must be an array of strings, found " + TypeName(names),
+           "write it as [\"joint1.backlash_rad\", ...]");
+    }
+    std::set<std::string> seen;
+    for (std::size_t i = 0; i < names.size(); ++i) {
+      const std::string at = "/covariance/names/" + std::to_string(i);
+      covariance.names.push_back(String(names[i], at));
+      if (!seen.insert(covariance.names.back()).second) {
+        Fail(at, "covariance.names lists '" + covariance.names.back() + "' twice",
+             "name each parameter once");
+      }
+    }
+    const json& matrix = value.at("matrix");
+    const std::size_t n = covariance.names.size();
+    if (!matrix.is_array() || matrix.size() != n) {
+      Fail("/covariance/matrix",
+           "covariance.matrix must have one row per name (" + std::to_string(n) + ")",
+           "write an n×n array of arrays, in the order of covariance.names");
+    }
+    covariance.matrix.resize(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
+    for (std::size_t i = 0; i < n; ++i) {
+      const auto row = Numbers(matrix[i], "/covariance/matrix/" + std::to_string(i), n,
+                               (std::to_string(n) + " numbers").c_str());
+      for (std::size_t k = 0; k < n; ++k) covariance.matrix(i, k) = row[k];
+    }
+    return covariance;
+  }
+
+  // ValidateParameters says "jointN: <field> ..."; point at that field.
+  [[noreturn]] void FailValidation(const std::string& why) const {
+    std::string pointer = "/covariance";
+    if (why.rfind("joint", 0) == 0 && why.size() > 6) {
+      pointer = "/" + why.substr(0, 6);
+      // "compliance" first: its message also mentions depth_range_m as a remedy.
+      for (const char* field : {"compliance", "bias_torque", "depth_range_m", "backlash_rad",
+                                "tau_min_nm", "deadzone_width_nm"}) {
+        if (why.find(field) != std::string::npos) {
+          pointer += std::string("/") + field;
+          break;
+        }
+      }
+    }
+    Fail(pointer, why, std::string("correct the value") + kSeeDocs);
+  }
+
+ private:
+  const std::string& file_;
+  detail::JsonLocator locator_;
+};
+
+}  // namespace
+
+models::ModelParameters ParseParameters(const std::string& text, const std::string& file) {
+  Reader reader(text, file);
+  json document;
+  try {
+    document = json::parse(text);
+  } catch (const json::parse_error& error) {
+    // nlohmann's byte is 1-based: the position of the last character it read.
+    const auto at = detail::PositionOfOffset(text, error.byte == 0 ? 0 : error.byte - 1);
+    std::string message = error.what();
+    const std::size_t colon = message.find(": ", message.find("parse error"));
+    if (colon != std::string::npos) message = message.substr(colon + 2);
+    throw InputError(file, at.line, at.column, "not valid JSON: " + message,
+                     "fix the syntax here; a missing comma, quote or bracket is the usual cause");
+  }
+  reader.CheckDuplicates();
+  reader.Object(document, "",
+                {{"format", true},
+                 {"version", true},
+                 {"description", false},
+                 {"joint1", true},
+                 {"joint2", true},
+                 {"covariance", false}});
+  const std::string format = reader.String(document.at("format"), "/format");
+  if (format != kParametersFormat) {
+    reader.Fail("/format",
+                "format is '" + format + "', not '" + std::string(kParametersFormat) + "'",
+                "this is not a pliant parameters file; start from data/paper.json");
+  }
+  const json& version = document.at("version");
+  if (!version.is_number_integer() || version.get<long long>() != kParametersVersion) {
+    reader.Fail("/version", "version " + version.dump() + " is not supported",
+                "this pliant reads version 1; write \"version\": 1 with the fields of "
+                "docs/parameters.md");
+  }
+  models::ModelParameters parameters;
+  if (document.contains("description")) {
+    parameters.description = reader.String(document.at("description"), "/description");
+  }
+  parameters.joints[0] = reader.Joint(document.at("joint1"), "/joint1");
+  parameters.joints[1] = reader.Joint(document.at("joint2"), "/joint2");
+  if (document.contains("covariance")) {
+    parameters.covariance = reader.Covariance(document.at("covariance"));
+  }
+  const std::string why = models::ValidateParameters(parameters);
+  if (!why.empty()) reader.FailValidation(why);
+  return parameters;
+}
+
+models::ModelParameters ReadParameters(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    throw InputError(path, 0, 0,
+                     std::string("cannot open the parameters file (") + std::strerror(errno) + ")",
+                     "check the path; data/paper.json is a complete example");
+  }
+  std::ostringstream text;
+  text << in.rdbuf();
+  return ParseParameters(text.str(), path);
+}
+
+}  // namespace pliant::io

@@ -1,0 +1,82 @@
+// Writing parameters files: the inverse of parameters_json.cpp, key for key.
+
+#include <set>
+#include <stdexcept>
+#include <vector>
+
+#include "pliant/io/atomic_file.h"
+#include "pliant/io/parameters_json.h"
+
+namespace pliant::io {
+namespace {
+
+using models::ComplianceForm;
+using models::JointParameters;
+
+nlohmann::ordered_json Sourced(nlohmann::ordered_json item, const JointParameters& joint,
+                               const char* key) {
+  const auto found = joint.sources.find(key);
+  if (found != joint.sources.end()) item["source"] = found->second;
+  return item;
+}
+
+nlohmann::ordered_json JointToJson(const JointParameters& joint) {
+  for (const auto& [key, text] : joint.sources) {
+    static const std::set<std::string> kFields = {"bias_torque",       "compliance",
+                                                  "backlash_rad",      "tau_min_nm",
+                                                  "deadzone_width_nm", "depth_range_m"};
+    if (kFields.count(key) == 0) {
+      throw std::invalid_argument("parameter source '" + key + "' names no parameter field");
+    }
+  }
+  const auto& c = joint.compliance.cubic.coefficients;
+  nlohmann::ordered_json out;
+  out["bias_torque"] = Sourced(
+      {{"angle_rad", joint.bias_torque.angle_rad}, {"torque_nm", joint.bias_torque.torque_nm}},
+      joint, "bias_torque");
+  out["compliance"] =
+      Sourced({{"form", joint.compliance.form == ComplianceForm::kInverseCubic ? "inverse_cubic"
+                                                                               : "direct_cubic"},
+               {"coefficients", {c[0], c[1], c[2], c[3]}}},
+              joint, "compliance");
+  out["backlash_rad"] = Sourced({{"value", joint.backlash_rad}}, joint, "backlash_rad");
+  out["tau_min_nm"] = Sourced({{"value", joint.tau_min_nm}}, joint, "tau_min_nm");
+  out["deadzone_width_nm"] =
+      Sourced({{"value", joint.deadzone_width_nm}}, joint, "deadzone_width_nm");
+  out["depth_range_m"] =
+      Sourced({{"value", {joint.depth_min_m, joint.depth_max_m}}}, joint, "depth_range_m");
+  return out;
+}
+
+// Key order as in docs/parameters.md, so written files read like the example.
+nlohmann::ordered_json OrderedJson(const models::ModelParameters& parameters) {
+  nlohmann::ordered_json out;
+  out["format"] = kParametersFormat;
+  out["version"] = kParametersVersion;
+  out["description"] = parameters.description;
+  out["joint1"] = JointToJson(parameters.joints[0]);
+  out["joint2"] = JointToJson(parameters.joints[1]);
+  if (parameters.covariance) {
+    const auto& covariance = *parameters.covariance;
+    nlohmann::ordered_json matrix = nlohmann::ordered_json::array();
+    for (Eigen::Index i = 0; i < covariance.matrix.rows(); ++i) {
+      std::vector<double> row(covariance.matrix.cols());
+      for (Eigen::Index k = 0; k < covariance.matrix.cols(); ++k) row[k] = covariance.matrix(i, k);
+      matrix.push_back(row);
+    }
+    out["covariance"] = {{"names", covariance.names}, {"matrix", matrix}};
+  }
+  return out;
+}
+
+}  // namespace
+
+nlohmann::json ParametersToJson(const models::ModelParameters& parameters) {
+  return OrderedJson(parameters);
+}
+
+void WriteParameters(const std::string& path, const models::ModelParameters& parameters) {
+  WriteFileAtomically(path, OrderedJson(parameters).dump(2) + "\n");
+}
+
+}  // namespace pliant::io
