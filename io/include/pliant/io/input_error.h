@@ -1,7 +1,8 @@
 #pragma once
 // Every problem with a user's input is reported the same way:
 //   FILE:LINE[:COLUMN]: what is wrong — what to do
-// and the command exits with status 2 (docs/errors.md).
+// and the command exits with status 2 (docs/log-format.md and docs/parameters.md
+// list every message).
 
 #include <cstddef>
 #include <stdexcept>
