@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -18,7 +19,6 @@ namespace {
 using detail::Quote;
 using detail::Trim;
 
-constexpr std::size_t kChunkBytes = std::size_t{1} << 20;
 constexpr double kTwoPi = 6.283185307179586;
 constexpr double kMaxDepthM = 0.3;
 constexpr double kMaxEffortNm = 10.0;
@@ -37,7 +37,7 @@ const char kRequiredFix[] =
 // (it grows only for a single line longer than a chunk).
 struct LogReader::Buffer {
   int fd = -1;
-  std::vector<char> data = std::vector<char>(kChunkBytes);
+  std::vector<char> data;
   std::size_t begin = 0, end = 0;
   bool eof = false;
   ~Buffer() {
@@ -47,6 +47,7 @@ struct LogReader::Buffer {
 
 LogReader::LogReader(std::string path, LogReaderOptions options)
     : path_(std::move(path)), options_(options), buffer_(std::make_unique<Buffer>()) {
+  buffer_->data.resize(std::max<std::size_t>(options_.chunk_bytes, 2));
   buffer_->fd = ::open(path_.c_str(), O_RDONLY | O_CLOEXEC);
   if (buffer_->fd < 0) {
     Fail(0, std::string("cannot open the log (") + std::strerror(errno) + ")",

@@ -127,6 +127,71 @@ class Reader {
       joint.sources[key] = String(item.at("source"), pointer + "/source");
   }
 
+  // "form" is optional and defaults to the paper's table.
+  void Bias(const json& bias, const std::string& at, JointParameters& joint) const {
+    const bool fourier = bias.is_object() && bias.contains("form") &&
+                         String(bias.at("form"), at + "/form") == "fourier";
+    if (bias.is_object() && bias.contains("form") && !fourier &&
+        bias.at("form").get<std::string>() != "table") {
+      Fail(at + "/form", Dotted(at) + ".form is '" + bias.at("form").get<std::string>() + "'",
+           "write \"table\" (angle_rad, torque_nm) or \"fourier\" (coefficients a0, a1, b1, …)");
+    }
+    if (fourier) {
+      Object(bias, at, {{"form", true}, {"coefficients", true}, {"depth_slope_nm_per_m", false},
+                        {"reference_depth_m", false}, {"source", false}});
+      joint.bias_form = models::BiasForm::kFourier;
+      auto& f = joint.bias_fourier;
+      f.coefficients = Numbers(bias.at("coefficients"), at + "/coefficients", 0,
+                               "a0, a1, b1, … in N·m");
+      if (bias.contains("depth_slope_nm_per_m")) {
+        f.depth_slope_nm_per_m =
+            Number(bias.at("depth_slope_nm_per_m"), at + "/depth_slope_nm_per_m", "N·m/m");
+      }
+      if (bias.contains("reference_depth_m")) {
+        f.reference_depth_m = Number(bias.at("reference_depth_m"), at + "/reference_depth_m", "m");
+      }
+    } else {
+      Object(bias, at, {{"form", false}, {"angle_rad", true}, {"torque_nm", true}, {"source", false}});
+      joint.bias_torque.angle_rad =
+          Numbers(bias.at("angle_rad"), at + "/angle_rad", 0, "angles in rad");
+      joint.bias_torque.torque_nm =
+          Numbers(bias.at("torque_nm"), at + "/torque_nm", 0, "torques in N·m");
+    }
+    Source(bias, at, "bias_torque", joint);
+  }
+
+  void Compliance(const json& compliance, const std::string& at, JointParameters& joint) const {
+    const bool beam = compliance.is_object() && compliance.contains("form") &&
+                      String(compliance.at("form"), at + "/form") == "beam_series";
+    if (beam) {
+      Object(compliance, at, {{"form", true}, {"joint_compliance_rad_per_nm", true},
+                              {"structure_compliance_rad_per_n", true},
+                              {"shaft_flexibility_per_nm2", true}, {"cannula_length_m", true},
+                              {"source", false}});
+      joint.compliance.form = ComplianceForm::kBeamSeries;
+      auto& c = joint.compliance.cubic.coefficients;
+      const char* units[4] = {"rad/(N·m)", "rad/N", "1/(N·m²)", "m"};
+      const char* keys[4] = {"joint_compliance_rad_per_nm", "structure_compliance_rad_per_n",
+                             "shaft_flexibility_per_nm2", "cannula_length_m"};
+      for (int i = 0; i < 4; ++i) c[i] = Number(compliance.at(keys[i]), at + "/" + keys[i], units[i]);
+      Source(compliance, at, "compliance", joint);
+      return;
+    }
+    Object(compliance, at, {{"form", true}, {"coefficients", true}, {"source", false}});
+    const std::string form = String(compliance.at("form"), at + "/form");
+    if (form != "inverse_cubic" && form != "direct_cubic") {
+      Fail(at + "/form", Dotted(at) + ".form is '" + form + "'",
+           "write \"inverse_cubic\" (the paper's 1/K(L), N·m/rad), \"direct_cubic\" (K(L), "
+           "rad/(N·m)) or \"beam_series\" (docs/identification.md)");
+    }
+    joint.compliance.form =
+        form == "inverse_cubic" ? ComplianceForm::kInverseCubic : ComplianceForm::kDirectCubic;
+    const auto c = Numbers(compliance.at("coefficients"), at + "/coefficients", 4,
+                           "4 numbers c3, c2, c1, c0");
+    std::copy(c.begin(), c.end(), joint.compliance.cubic.coefficients.begin());
+    Source(compliance, at, "compliance", joint);
+  }
+
   JointParameters Joint(const json& value, const std::string& pointer) const {
     Object(value, pointer,
            {{"bias_torque", true},
@@ -136,31 +201,8 @@ class Reader {
             {"deadzone_width_nm", false},
             {"depth_range_m", true}});
     JointParameters joint;
-    const json& bias = value.at("bias_torque");
-    const std::string bias_at = pointer + "/bias_torque";
-    Object(bias, bias_at, {{"angle_rad", true}, {"torque_nm", true}, {"source", false}});
-    joint.bias_torque.angle_rad =
-        Numbers(bias.at("angle_rad"), bias_at + "/angle_rad", 0, "angles in rad");
-    joint.bias_torque.torque_nm =
-        Numbers(bias.at("torque_nm"), bias_at + "/torque_nm", 0, "torques in N·m");
-    Source(bias, bias_at, "bias_torque", joint);
-
-    const json& compliance = value.at("compliance");
-    const std::string compliance_at = pointer + "/compliance";
-    Object(compliance, compliance_at, {{"form", true}, {"coefficients", true}, {"source", false}});
-    const std::string form = String(compliance.at("form"), compliance_at + "/form");
-    if (form != "inverse_cubic" && form != "direct_cubic") {
-      Fail(compliance_at + "/form", Dotted(compliance_at) + ".form is '" + form + "'",
-           "write \"inverse_cubic\" (the paper's 1/K(L), N·m/rad) or \"direct_cubic\" (K(L), "
-           "rad/(N·m))");
-    }
-    joint.compliance.form =
-        form == "inverse_cubic" ? ComplianceForm::kInverseCubic : ComplianceForm::kDirectCubic;
-    const auto c = Numbers(compliance.at("coefficients"), compliance_at + "/coefficients", 4,
-                           "4 numbers c3, c2, c1, c0");
-    std::copy(c.begin(), c.end(), joint.compliance.cubic.coefficients.begin());
-    Source(compliance, compliance_at, "compliance", joint);
-
+    Bias(value.at("bias_torque"), pointer + "/bias_torque", joint);
+    Compliance(value.at("compliance"), pointer + "/compliance", joint);
     joint.backlash_rad = Number(Valued(value, pointer, "backlash_rad", joint),
                                 pointer + "/backlash_rad/value", "rad");
     joint.tau_min_nm =
@@ -248,6 +290,21 @@ models::ModelParameters ParseParameters(const std::string& text, const std::stri
     if (colon != std::string::npos) message = message.substr(colon + 2);
     throw InputError(file, at.line, at.column, "not valid JSON: " + message,
                      "fix the syntax here; a missing comma, quote or bracket is the usual cause");
+  } catch (const json::out_of_range& error) {
+    // A number too large for a double (found by fuzzing): nlohmann gives no
+    // position, but quotes the literal, which we find in the text.
+    const std::string message = error.what();
+    const std::size_t open = message.find('\'');
+    const std::size_t close = message.rfind('\'');
+    const std::string literal =
+        open < close ? message.substr(open + 1, close - open - 1) : std::string();
+    const std::size_t offset = literal.empty() ? std::string::npos : text.find(literal);
+    const auto at = offset == std::string::npos ? detail::JsonPosition{}
+                                                : detail::PositionOfOffset(text, offset);
+    throw InputError(file, at.line, at.column,
+                     "number " + (literal.empty() ? std::string("value") : literal) +
+                         " does not fit in a double",
+                     "write a number between -1.7e308 and 1.7e308");
   }
   reader.CheckDuplicates();
   reader.Object(document, "",

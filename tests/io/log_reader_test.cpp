@@ -279,5 +279,24 @@ TEST_F(LogReaderTest, LineLongerThanAChunk) {
   EXPECT_EQ(log.Value(1, 6), 8.0);
 }
 
+TEST_F(LogReaderTest, AnyChunkSizeReadsTheSameValuesAndLines) {
+  const std::string text = "\xEF\xBB\xBF# arm: PSM1\r\nt,q1,q2,q3,tau1,tau2,aux\r\n"
+                           "0,0.1,-0.2,0.15,0.5,-0.25,\r\n\r\n0.001,0.2,-0.3,0.16,1.5,2,7\r\n"
+                           "0.002,0.2,-0.3,0.16,1.5,2,x\r\n";
+  const std::string expected_error =
+      "FILE:6:7: value 'x' in column 'aux' is not a number";
+  for (std::size_t chunk : {2u, 3u, 7u, 16u, 1u << 20}) {
+    LogReaderOptions options;
+    options.chunk_bytes = chunk;
+    EXPECT_EQ(ErrorOf(text, options).substr(0, expected_error.size()), expected_error) << chunk;
+    const Log log = Read(text.substr(0, text.rfind("0.002")), options);
+    ASSERT_EQ(log.Rows(), 2u) << chunk;
+    EXPECT_EQ(log.header.Metadata("arm"), "PSM1");
+    EXPECT_EQ(log.Value(1, 2), -0.3);
+    EXPECT_EQ(log.Value(1, 6), 7.0);
+    EXPECT_TRUE(std::isnan(log.Value(0, 6)));
+  }
+}
+
 }  // namespace
 }  // namespace pliant::io

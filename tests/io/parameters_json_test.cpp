@@ -193,7 +193,8 @@ TEST(ParametersJson, WrongTypesAndShapes) {
   EXPECT_EQ(ErrorOf(PaperWith("\"form\": \"inverse_cubic\",\n      \"coefficients\": [639",
                               "\"form\": \"inverse\",\n      \"coefficients\": [639")),
             "p.json:12:7: joint1.compliance.form is 'inverse' \u2014 write \"inverse_cubic\" (the "
-            "paper's 1/K(L), N·m/rad) or \"direct_cubic\" (K(L), rad/(N·m))");
+            "paper's 1/K(L), N·m/rad), \"direct_cubic\" (K(L), rad/(N·m)) or \"beam_series\" "
+            "(docs/identification.md)");
   EXPECT_EQ(ErrorOf(PaperWith("\"format\": \"pliant-parameters\"", "\"format\": \"other\"")),
             "p.json:2:3: format is 'other', not 'pliant-parameters' \u2014 this is not a pliant "
             "parameters file; start from data/paper.json");
@@ -254,6 +255,17 @@ TEST(ParametersJson, SyntaxErrorsAndDuplicateKeysHaveLineAndColumn) {
   EXPECT_EQ(ErrorOf(PaperWith("\"value\": 0.008478,", "\"value\": 0.008478, \"value\": 0.1,")),
             "p.json:17:26: duplicate key 'value' in joint1.backlash_rad \u2014 keep only one; JSON "
             "readers silently use the last and ignore the others");
+}
+
+// Fuzzing found that a number too large for a double escaped as nlohmann's
+// out_of_range instead of an InputError (tests/fuzz/regressions/parameters/).
+TEST(ParametersJson, NumberTooLargeForADoubleIsAnInputError) {
+  EXPECT_EQ(ErrorOf(PaperWith("\"value\": 0.008478,", "\"value\": 1e400,")),
+            "p.json:17:16: number 1e400 does not fit in a double \u2014 write a number between "
+            "-1.7e308 and 1.7e308");
+  const std::string fuzzed =
+      ReadText(std::string(PLIANT_SOURCE_DIR) + "/tests/fuzz/regressions/parameters/number_overflow.json");
+  EXPECT_NE(ErrorOf(fuzzed).find("does not fit in a double"), std::string::npos) << ErrorOf(fuzzed);
 }
 
 }  // namespace

@@ -19,6 +19,10 @@ struct LogReaderOptions {
   /// Drop rows whose required columns hold NaN/Inf or an empty field, and count
   /// them, instead of stopping at the first.
   bool skip_bad_rows = false;
+  /// Bytes read at a time; memory stays at one chunk (plus the longest line).
+  /// Small chunks are for tests and fuzzing, which exercise lines that cross
+  /// chunk boundaries.
+  std::size_t chunk_bytes = std::size_t{1} << 20;
 };
 
 class LogReader {
