@@ -26,10 +26,14 @@ std::string TemporaryPath(const std::string& path) {
   return (target.parent_path() / name).string();
 }
 
+std::string DirectoryOf(const std::string& path) {
+  const std::string directory = std::filesystem::path(path).parent_path().string();
+  return directory.empty() ? "." : directory;
+}
+
 // Makes the rename itself durable; best effort, as some file systems refuse it.
 void SyncDirectory(const std::string& path) {
-  std::string directory = std::filesystem::path(path).parent_path().string();
-  if (directory.empty()) directory = ".";
+  const std::string directory = DirectoryOf(path);
   const int fd = ::open(directory.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
   if (fd < 0) return;
   (void)::fsync(fd);
@@ -38,16 +42,29 @@ void SyncDirectory(const std::string& path) {
 
 }  // namespace
 
+// Where the file system allows, the data goes to an unnamed file (O_TMPFILE)
+// that is given a name only at Commit(): a process killed before then (even by
+// SIGKILL, when no destructor runs) leaves nothing behind. Elsewhere a named
+// temporary is used and removed by the destructor.
 AtomicFile::AtomicFile(std::string path)
     : path_(std::move(path)), temporary_path_(TemporaryPath(path_)) {
-  stream_ = std::fopen(temporary_path_.c_str(), "wbx");
-  if (stream_ == nullptr) ThrowErrno("cannot create a temporary file to write " + path_);
+  int fd = ::open(DirectoryOf(path_).c_str(), O_TMPFILE | O_WRONLY | O_CLOEXEC, 0666);
+  anonymous_ = fd >= 0;
+  if (!anonymous_) {
+    fd = ::open(temporary_path_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+  }
+  if (fd < 0) ThrowErrno("cannot create a temporary file to write " + path_);
+  stream_ = ::fdopen(fd, "wb");
+  if (stream_ == nullptr) {
+    ::close(fd);
+    ThrowErrno("cannot write " + path_);
+  }
 }
 
 AtomicFile::~AtomicFile() {
   if (committed_) return;
   if (stream_ != nullptr) std::fclose(stream_);
-  std::remove(temporary_path_.c_str());
+  if (!anonymous_) std::remove(temporary_path_.c_str());
 }
 
 void AtomicFile::Write(std::string_view bytes) {
@@ -63,6 +80,14 @@ void AtomicFile::Commit() {
   // leave the new name pointing at an empty file.
   if (std::fflush(stream_) != 0 || ::fsync(::fileno(stream_)) != 0) {
     ThrowErrno("cannot write " + path_);
+  }
+  if (anonymous_) {
+    const std::string fd_path = "/proc/self/fd/" + std::to_string(::fileno(stream_));
+    if (::linkat(AT_FDCWD, fd_path.c_str(), AT_FDCWD, temporary_path_.c_str(),
+                 AT_SYMLINK_FOLLOW) != 0) {
+      ThrowErrno("cannot write " + path_);
+    }
+    anonymous_ = false;  // from here on the temporary has a name to remove
   }
   const int closed = std::fclose(stream_);
   stream_ = nullptr;

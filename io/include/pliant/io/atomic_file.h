@@ -29,6 +29,7 @@ class AtomicFile {
   std::string temporary_path_;
   std::FILE* stream_ = nullptr;
   bool committed_ = false;
+  bool anonymous_ = false;  ///< the data is in an unnamed O_TMPFILE file
 };
 
 /// Writes a whole file atomically.
