@@ -12,5 +12,9 @@ namespace pliant::cli {
 using Command = std::function<void()>;
 
 Command AddCorrectCommand(CLI::App& app);
+Command AddIdentifyCommand(CLI::App& app);
+Command AddParamsCommand(CLI::App& app);
+Command AddSimulateCommand(CLI::App& app);
+Command AddFilterCommand(CLI::App& app);
 
 }  // namespace pliant::cli

@@ -17,6 +17,10 @@ int main(int argc, char** argv) {
     commands[app.get_subcommands({})[before]] = std::move(run);
   };
   add(pliant::cli::AddCorrectCommand);
+  add(pliant::cli::AddIdentifyCommand);
+  add(pliant::cli::AddParamsCommand);
+  add(pliant::cli::AddSimulateCommand);
+  add(pliant::cli::AddFilterCommand);
 
   try {
     app.parse(argc, argv);

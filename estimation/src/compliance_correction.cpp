@@ -1,5 +1,6 @@
 #include "pliant/estimation/compliance_correction.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -19,9 +20,46 @@ const models::ModelParameters& Validated(const models::ModelParameters& paramete
   return parameters;
 }
 
-std::vector<double> Concatenate(const std::vector<double>& a, const std::vector<double>& b) {
-  std::vector<double> out = a;
-  out.insert(out.end(), b.begin(), b.end());
+// A joint whose bias is a Fourier series gets a flat placeholder table (and
+// vice versa), so that both effects can be evaluated for both joints.
+models::BiasTorqueTable TableOrFlat(const models::JointParameters& joint) {
+  if (joint.bias_form == models::BiasForm::kTable) return joint.bias_torque;
+  return {{0.0}, {0.0}};
+}
+
+int HarmonicsOf(const models::ModelParameters& p) {
+  std::size_t size = 1;
+  for (const auto& joint : p.joints) {
+    if (joint.bias_form == models::BiasForm::kFourier) {
+      size = std::max(size, joint.bias_fourier.coefficients.size());
+    }
+  }
+  return int(size / 2);
+}
+
+double ReferenceDepthOf(const models::ModelParameters& p) {
+  for (const auto& joint : p.joints) {
+    if (joint.bias_form == models::BiasForm::kFourier) return joint.bias_fourier.reference_depth_m;
+  }
+  return 0.155;
+}
+
+// Both joints' series padded to the same harmonic count (zeros cost nothing),
+// their depth terms moved to one reference depth by shifting a0.
+std::vector<double> FourierValues(const models::ModelParameters& p, int harmonics,
+                                  double reference_depth_m) {
+  std::vector<double> out;
+  for (const auto& joint : p.joints) {
+    std::vector<double> c(2 * harmonics + 2, 0.0);
+    if (joint.bias_form == models::BiasForm::kFourier) {
+      std::copy(joint.bias_fourier.coefficients.begin(), joint.bias_fourier.coefficients.end(),
+                c.begin());
+      const auto& f = joint.bias_fourier;
+      c.back() = f.depth_slope_nm_per_m;
+      c[0] += f.depth_slope_nm_per_m * (reference_depth_m - f.reference_depth_m);
+    }
+    out.insert(out.end(), c.begin(), c.end());
+  }
   return out;
 }
 
@@ -31,14 +69,20 @@ ComplianceCorrector::ComplianceCorrector(const models::ModelParameters& paramete
                                          CorrectionModel model)
     : parameters_(Validated(parameters)),
       model_(model),
-      bias_(parameters.joints[0].bias_torque, parameters.joints[1].bias_torque),
+      bias_(TableOrFlat(parameters.joints[0]), TableOrFlat(parameters.joints[1])),
+      bias_fourier_(HarmonicsOf(parameters), ReferenceDepthOf(parameters)),
       compliance_(parameters.joints[0], parameters.joints[1]),
       backlash_sign_(parameters.joints[0].backlash_rad, parameters.joints[1].backlash_rad),
       backlash_deadzone_(parameters.joints[0].backlash_rad, parameters.joints[1].backlash_rad,
                          parameters.joints[0].deadzone_width_nm,
                          parameters.joints[1].deadzone_width_nm) {
   const auto& j = parameters.joints;
-  bias_values_ = Concatenate(j[0].bias_torque.torque_nm, j[1].bias_torque.torque_nm);
+  for (const auto& joint : j) {
+    const auto table = TableOrFlat(joint);
+    bias_values_.insert(bias_values_.end(), table.torque_nm.begin(), table.torque_nm.end());
+  }
+  fourier_values_ =
+      FourierValues(parameters, HarmonicsOf(parameters), ReferenceDepthOf(parameters));
   for (const auto& joint : j) {
     for (double c : joint.compliance.cubic.coefficients) compliance_values_.push_back(c);
   }
@@ -52,8 +96,12 @@ JointCorrection ComplianceCorrector::Correct(const Eigen::Vector3d& q,
   models::JointState<double> state;
   state.encoder_angle_rad = q.head<2>();
   state.insertion_depth_m = q[2];
-  state.external_torque_nm =
-      measured_torque_nm - bias_(bias_values_.data(), state);
+  const Eigen::Vector2d table = bias_(bias_values_.data(), state);
+  const Eigen::Vector2d fourier = bias_fourier_(fourier_values_.data(), state);
+  for (int j = 0; j < 2; ++j) {
+    const bool smooth = parameters_.joints[j].bias_form == models::BiasForm::kFourier;
+    state.external_torque_nm[j] = measured_torque_nm[j] - (smooth ? fourier[j] : table[j]);
+  }
 
   JointCorrection out;
   out.external_torque_nm = state.external_torque_nm;

@@ -4,8 +4,15 @@
 #include <stdexcept>
 
 #include "pliant/models/effects/backlash.h"
+#include "pliant/models/effects/backlash_hysteresis.h"
 #include "pliant/models/effects/bias_torque.h"
+#include "pliant/models/effects/bias_torque_depth.h"
+#include "pliant/models/effects/bias_torque_fourier.h"
 #include "pliant/models/effects/compliance.h"
+#include "pliant/models/effects/deflection_coupling.h"
+#include "pliant/models/effects/effort_drift.h"
+#include "pliant/models/effects/joint_friction.h"
+#include "pliant/models/effects/load_dependent_compliance.h"
 
 namespace pliant::estimation {
 namespace {
@@ -32,6 +39,14 @@ EffectCatalogue& EffectCatalogue::Global() {
     c->Add<models::ComplianceEffect>();
     c->Add<models::BacklashSignEffect>();
     c->Add<models::BacklashDeadZoneEffect>();
+    c->Add<models::BacklashHysteresisEffect>();  // the filter's backlash, with memory
+    c->Add<models::BiasTorqueFourierEffect>();
+    // Effects the paper's model lacks (the simulator's hidden effects).
+    c->Add<models::JointFrictionEffect>();
+    c->Add<models::EffortDriftEffect>();
+    c->Add<models::BiasTorqueDepthEffect>();
+    c->Add<models::LoadDependentComplianceEffect>();
+    c->Add<models::DeflectionCouplingEffect>();
     return c;
   }();
   return *catalogue;

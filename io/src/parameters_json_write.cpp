@@ -20,6 +20,30 @@ nlohmann::ordered_json Sourced(nlohmann::ordered_json item, const JointParameter
   return item;
 }
 
+nlohmann::ordered_json BiasJson(const JointParameters& joint) {
+  if (joint.bias_form == models::BiasForm::kTable) {
+    return {{"angle_rad", joint.bias_torque.angle_rad}, {"torque_nm", joint.bias_torque.torque_nm}};
+  }
+  const auto& f = joint.bias_fourier;
+  return {{"form", "fourier"},
+          {"coefficients", f.coefficients},
+          {"depth_slope_nm_per_m", f.depth_slope_nm_per_m},
+          {"reference_depth_m", f.reference_depth_m}};
+}
+
+nlohmann::ordered_json ComplianceJson(const JointParameters& joint) {
+  const auto& c = joint.compliance.cubic.coefficients;
+  if (joint.compliance.form == ComplianceForm::kBeamSeries) {
+    return {{"form", "beam_series"},
+            {"joint_compliance_rad_per_nm", c[models::kJointComplianceRadPerNm]},
+            {"structure_compliance_rad_per_n", c[models::kStructureComplianceRadPerN]},
+            {"shaft_flexibility_per_nm2", c[models::kShaftFlexibilityPerNm2]},
+            {"cannula_length_m", c[models::kCannulaLengthM]}};
+  }
+  return {{"form", models::ComplianceFormName(joint.compliance.form)},
+          {"coefficients", {c[0], c[1], c[2], c[3]}}};
+}
+
 nlohmann::ordered_json JointToJson(const JointParameters& joint) {
   for (const auto& [key, text] : joint.sources) {
     static const std::set<std::string> kFields = {"bias_torque",       "compliance",
@@ -29,16 +53,9 @@ nlohmann::ordered_json JointToJson(const JointParameters& joint) {
       throw std::invalid_argument("parameter source '" + key + "' names no parameter field");
     }
   }
-  const auto& c = joint.compliance.cubic.coefficients;
   nlohmann::ordered_json out;
-  out["bias_torque"] = Sourced(
-      {{"angle_rad", joint.bias_torque.angle_rad}, {"torque_nm", joint.bias_torque.torque_nm}},
-      joint, "bias_torque");
-  out["compliance"] =
-      Sourced({{"form", joint.compliance.form == ComplianceForm::kInverseCubic ? "inverse_cubic"
-                                                                               : "direct_cubic"},
-               {"coefficients", {c[0], c[1], c[2], c[3]}}},
-              joint, "compliance");
+  out["bias_torque"] = Sourced(BiasJson(joint), joint, "bias_torque");
+  out["compliance"] = Sourced(ComplianceJson(joint), joint, "compliance");
   out["backlash_rad"] = Sourced({{"value", joint.backlash_rad}}, joint, "backlash_rad");
   out["tau_min_nm"] = Sourced({{"value", joint.tau_min_nm}}, joint, "tau_min_nm");
   out["deadzone_width_nm"] =

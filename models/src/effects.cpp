@@ -3,6 +3,7 @@
 
 #include "pliant/models/effects/backlash.h"
 #include "pliant/models/effects/bias_torque.h"
+#include "pliant/models/effects/bias_torque_fourier.h"
 #include "pliant/models/effects/compliance.h"
 
 namespace pliant::models {
@@ -60,6 +61,17 @@ std::vector<ParameterSpec> ComplianceEffect::Parameters() const {
   std::vector<ParameterSpec> specs;
   static const char* kPowers[4] = {"3", "2", "1", "0"};
   for (int j = 0; j < 2; ++j) {
+    if (forms_[j] == ComplianceForm::kBeamSeries) {
+      // Priors: the paper's K is 0.03–0.08 rad/(N·m); an 8 mm steel tube has
+      // 1/(EI) ≈ 0.05 /(N·m²); the cannula tip sits 25 mm beyond the RCM.
+      const double* d = &defaults_[4 * j];
+      const std::string k = "k" + JointName(j);
+      specs.push_back({k + "_joint", "rad/(N·m)", d[0], 0.0, 1.0, 0.05});
+      specs.push_back({k + "_structure", "rad/N", d[1], 0.0, 0.1, 0.005});
+      specs.push_back({k + "_shaft_flexibility", "1/(N·m²)", d[2], 0.0, 100.0, 1.0});
+      specs.push_back({k + "_cannula_length", "m", d[3], 0.0, 0.1, 0.005});
+      continue;
+    }
     const bool inverse = forms_[j] == ComplianceForm::kInverseCubic;
     for (int i = 0; i < 4; ++i) {
       const double value = defaults_[4 * j + i];
@@ -71,6 +83,25 @@ std::vector<ParameterSpec> ComplianceEffect::Parameters() const {
       specs.push_back({std::string(inverse ? "inv_k" : "k") + JointName(j) + "_c" + kPowers[i],
                        unit, value, -1e6, 1e6, sd});
     }
+  }
+  return specs;
+}
+
+BiasTorqueFourierEffect::BiasTorqueFourierEffect(int harmonics, double reference_depth_m)
+    : harmonics_(harmonics), reference_depth_m_(reference_depth_m) {}
+
+std::vector<ParameterSpec> BiasTorqueFourierEffect::Parameters() const {
+  // Prior: the counterbalance leaves a few tenths of a N·m (paper Fig. 4);
+  // the depth slope of the dVRK file is −0.24 N·m/m.
+  std::vector<ParameterSpec> specs;
+  for (int j = 0; j < 2; ++j) {
+    const std::string joint = JointName(j);
+    specs.push_back({"tau0_" + joint + "_a0", "N·m", 0.0, -3.316, 3.316, 0.5});
+    for (int k = 1; k <= harmonics_; ++k) {
+      specs.push_back({"tau0_" + joint + "_a" + std::to_string(k), "N·m", 0.0, -3.316, 3.316, 0.5});
+      specs.push_back({"tau0_" + joint + "_b" + std::to_string(k), "N·m", 0.0, -3.316, 3.316, 0.5});
+    }
+    specs.push_back({"tau0_" + joint + "_depth_slope", "N·m/m", 0.0, -10.0, 10.0, 1.0});
   }
   return specs;
 }

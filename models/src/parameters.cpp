@@ -7,9 +7,41 @@
 namespace pliant::models {
 namespace {
 
-std::string ValidateJoint(const JointParameters& joint) {
+std::string ValidateFourier(const BiasTorqueFourier& bias) {
+  if (bias.coefficients.empty() || bias.coefficients.size() % 2 == 0) {
+    return "bias_torque coefficients must be a0, a1, b1, … (an odd number, at least one)";
+  }
+  for (double v : bias.coefficients) {
+    if (!std::isfinite(v)) return "bias_torque coefficients hold a value that is not finite";
+  }
+  if (!std::isfinite(bias.depth_slope_nm_per_m) || !(bias.reference_depth_m >= 0.0)) {
+    return "bias_torque depth_slope_nm_per_m must be finite and reference_depth_m >= 0";
+  }
+  return {};
+}
+
+// A beam-series law is a sum of compliances in series, each >= 0 by physics;
+// then K(L) >= c_joint + c_structure/L > 0 unless both vanish, and the shaft
+// term is > 0 wherever L > l_c. That is the whole proof of K > 0 on the range.
+std::string ValidateBeamSeries(const JointParameters& joint) {
+  const auto& c = joint.compliance.cubic.coefficients;
+  for (double v : c) {
+    if (!(v >= 0.0) || !std::isfinite(v)) {
+      return "compliance beam_series terms must be finite and >= 0 (each is a compliance or a "
+             "length)";
+    }
+  }
+  const bool rigid_arm = c[kJointComplianceRadPerNm] == 0.0 && c[kStructureComplianceRadPerN] == 0.0;
+  if (rigid_arm && !(c[kShaftFlexibilityPerNm2] > 0.0 && c[kCannulaLengthM] < joint.depth_min_m)) {
+    return "the compliance beam_series law is zero somewhere on the valid depth range; it must "
+           "stay positive there (give the joint or structure a compliance, or narrow "
+           "depth_range_m beyond the cannula)";
+  }
+  return {};
+}
+
+std::string ValidateTable(const BiasTorqueTable& table) {
   std::ostringstream why;
-  const auto& table = joint.bias_torque;
   if (table.angle_rad.empty() || table.angle_rad.size() != table.torque_nm.size()) {
     why << "bias_torque needs as many angle_rad as torque_nm values, at least one";
     return why.str();
@@ -23,6 +55,15 @@ std::string ValidateJoint(const JointParameters& joint) {
   for (double v : table.torque_nm) {
     if (!std::isfinite(v)) return "bias_torque torque_nm holds a value that is not finite";
   }
+  return {};
+}
+
+std::string ValidateJoint(const JointParameters& joint) {
+  std::ostringstream why;
+  const std::string bias = joint.bias_form == BiasForm::kFourier
+                               ? ValidateFourier(joint.bias_fourier)
+                               : ValidateTable(joint.bias_torque);
+  if (!bias.empty()) return bias;
   if (!(joint.depth_min_m > 0.0 && joint.depth_max_m > joint.depth_min_m &&
         joint.depth_max_m <= 0.3)) {
     return "depth_range_m must be [min, max] with 0 < min < max <= 0.3 m";
@@ -36,6 +77,7 @@ std::string ValidateJoint(const JointParameters& joint) {
   if (!(joint.deadzone_width_nm > 0.0 && joint.deadzone_width_nm < 10.0)) {
     return "deadzone_width_nm must be in (0, 10) N·m";
   }
+  if (joint.compliance.form == ComplianceForm::kBeamSeries) return ValidateBeamSeries(joint);
   const double minimum = joint.compliance.cubic.MinimumOn(joint.depth_min_m, joint.depth_max_m);
   if (!(minimum > 0.0)) {
     why << "the compliance cubic reaches " << minimum << " on the valid depth range ["
@@ -68,6 +110,30 @@ double ComplianceAt(const JointParameters& joint, double depth_m) {
   const double depth = std::clamp(depth_m, joint.depth_min_m, joint.depth_max_m);
   return EvaluateCompliance(joint.compliance.form, joint.compliance.cubic.coefficients.data(),
                             depth);
+}
+
+double BiasTorqueAt(const JointParameters& joint, double angle_rad, double depth_m) {
+  if (joint.bias_form == BiasForm::kFourier) {
+    const auto& f = joint.bias_fourier;
+    return EvaluateFourierBias(f.coefficients.data(), int(f.coefficients.size() / 2),
+                               f.depth_slope_nm_per_m, f.reference_depth_m, angle_rad, depth_m);
+  }
+  const auto& t = joint.bias_torque;
+  if (t.angle_rad.size() == 1 || angle_rad <= t.angle_rad.front()) return t.torque_nm.front();
+  if (angle_rad >= t.angle_rad.back()) return t.torque_nm.back();
+  std::size_t i = 1;
+  while (angle_rad > t.angle_rad[i]) ++i;
+  const double w = (angle_rad - t.angle_rad[i - 1]) / (t.angle_rad[i] - t.angle_rad[i - 1]);
+  return t.torque_nm[i - 1] + w * (t.torque_nm[i] - t.torque_nm[i - 1]);
+}
+
+const char* ComplianceFormName(ComplianceForm form) {
+  switch (form) {
+    case ComplianceForm::kInverseCubic: return "inverse_cubic";
+    case ComplianceForm::kDirectCubic: return "direct_cubic";
+    case ComplianceForm::kBeamSeries: return "beam_series";
+  }
+  return "?";
 }
 
 }  // namespace pliant::models

@@ -3,7 +3,7 @@
 // memory and no uncertainty: the baseline every later estimator is measured
 // against.
 //
-//   tau_ext = tau_meas − tau0(q)                        (bias torque table)
+//   tau_ext = tau_meas − tau0(q)              (bias torque: table or Fourier series)
 //   paper:    q̂ = q − [δ·sgn(tau_ext) + K(L)·tau_ext]  if |tau_ext| > tau_min,
 //             q̂ = q                                    otherwise   (paper eq. 2)
 //   deadzone: q̂ = q − [δ·S(tau_ext / w) + K(L)·tau_ext]             (no switch)
@@ -21,6 +21,7 @@
 
 #include "pliant/models/effects/backlash.h"
 #include "pliant/models/effects/bias_torque.h"
+#include "pliant/models/effects/bias_torque_fourier.h"
 #include "pliant/models/effects/compliance.h"
 #include "pliant/models/parameters.h"
 
@@ -58,11 +59,12 @@ class ComplianceCorrector {
  private:
   models::ModelParameters parameters_;
   CorrectionModel model_;
-  models::BiasTorqueEffect bias_;
+  models::BiasTorqueEffect bias_;                 // joints whose bias is a table
+  models::BiasTorqueFourierEffect bias_fourier_;  // joints whose bias is a Fourier series
   models::ComplianceEffect compliance_;
   models::BacklashSignEffect backlash_sign_;
   models::BacklashDeadZoneEffect backlash_deadzone_;
-  std::vector<double> bias_values_, compliance_values_, sign_values_, deadzone_values_;
+  std::vector<double> bias_values_, fourier_values_, compliance_values_, sign_values_, deadzone_values_;
 };
 
 }  // namespace pliant::estimation

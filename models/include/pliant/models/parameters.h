@@ -3,6 +3,7 @@
 // Read and written as JSON by pliant::io (docs/parameters.md).
 
 #include <array>
+#include <cmath>
 #include <map>
 #include <optional>
 #include <string>
@@ -14,13 +15,29 @@
 
 namespace pliant::models {
 
-/// How a compliance cubic is written.
+/// How a compliance law is written.
 enum class ComplianceForm {
   kInverseCubic,  ///< the paper's: 1/K(L) = c3·L³ + c2·L² + c1·L + c0, in N·m/rad
   kDirectCubic,   ///< the dVRK parameter file's: K(L) = a·L³ + b·L² + c·L + d, in rad/(N·m)
+  /// From mechanics (docs/identification.md): three compliances in series,
+  ///   K(L) = c_joint + c_structure / L + f_shaft · (L − l_c)³₊ / (3 L²),
+  /// the joint's torsion, the arm tilting under the lateral force F = tau/L,
+  /// and the shaft bending as a cantilever beyond the cannula tip (tip
+  /// deflection F·l³/(3EI), l = L − l_c, seen as an angle at the RCM).
+  kBeamSeries,
+};
+
+/// The four numbers of a kBeamSeries law, in the order they are stored.
+enum BeamSeriesCoefficient {
+  kJointComplianceRadPerNm = 0,      ///< c_joint, rad/(N·m)
+  kStructureComplianceRadPerN = 1,   ///< c_structure, rad/N
+  kShaftFlexibilityPerNm2 = 2,       ///< f_shaft = 1/(EI), 1/(N·m²)
+  kCannulaLengthM = 3,               ///< l_c: RCM to cannula tip, m (geometry, not fitted)
 };
 
 /// Compliance K(L) of one joint (rad/(N·m)) as a function of insertion depth L (m).
+/// `cubic.coefficients` holds the cubic's {c3, c2, c1, c0}, or for kBeamSeries
+/// the four numbers indexed by BeamSeriesCoefficient.
 struct ComplianceLaw {
   ComplianceForm form = ComplianceForm::kInverseCubic;
   Cubic cubic;
@@ -34,8 +51,25 @@ struct BiasTorqueTable {
   std::vector<double> torque_nm;  ///< same length
 };
 
+/// A smooth bias torque: a short Fourier series in the joint's own angle q
+/// plus a linear term in the insertion depth L (the instrument's weight moves
+/// along the shaft):
+///   tau0(q, L) = a0 + Σ_k [a_k·cos(k·q) + b_k·sin(k·q)] + s·(L − L_ref)
+struct BiasTorqueFourier {
+  std::vector<double> coefficients;  ///< a0, a1, b1, a2, b2, … (N·m); odd length
+  double depth_slope_nm_per_m = 0.0;  ///< s
+  double reference_depth_m = 0.155;   ///< L_ref, the middle of the paper's depth range
+};
+
+enum class BiasForm {
+  kTable,    ///< the paper's table (BiasTorqueTable)
+  kFourier,  ///< BiasTorqueFourier
+};
+
 struct JointParameters {
-  BiasTorqueTable bias_torque;
+  BiasForm bias_form = BiasForm::kTable;
+  BiasTorqueTable bias_torque;     ///< used when bias_form is kTable
+  BiasTorqueFourier bias_fourier;  ///< used when bias_form is kFourier
   ComplianceLaw compliance;
   double backlash_rad = 0.0;       ///< delta: half the cannula clearance, as an angle
   double tau_min_nm = 0.0;         ///< the paper's switch threshold (equation 2)
@@ -60,8 +94,33 @@ struct ModelParameters {
 /// Compliance K (rad/(N·m)) of a law at depth L (m), no clamping.
 template <typename T>
 T EvaluateCompliance(ComplianceForm form, const T* coefficients, const T& depth_m) {
+  if (form == ComplianceForm::kBeamSeries) {
+    // Series compliances add. The shaft bends only where it leaves the cannula.
+    const T free_length = depth_m - coefficients[kCannulaLengthM];
+    const T shaft = free_length > 0.0 ? free_length * free_length * free_length /
+                                            (T(3.0) * depth_m * depth_m)
+                                      : T(0.0);
+    return coefficients[kJointComplianceRadPerNm] +
+           coefficients[kStructureComplianceRadPerN] / depth_m +
+           coefficients[kShaftFlexibilityPerNm2] * shaft;
+  }
   const T p = Horner3(coefficients, depth_m);
   return form == ComplianceForm::kInverseCubic ? T(1.0) / p : p;
+}
+
+/// tau0 (N·m) of a Fourier bias at joint angle q (rad) and depth L (m);
+/// `coefficients` as in BiasTorqueFourier, `harmonics` = (size − 1) / 2.
+template <typename T>
+T EvaluateFourierBias(const T* coefficients, int harmonics, const T& depth_slope_nm_per_m,
+                      double reference_depth_m, const T& angle_rad, const T& depth_m) {
+  using std::cos;
+  using std::sin;
+  T sum = coefficients[0] + depth_slope_nm_per_m * (depth_m - reference_depth_m);
+  for (int k = 1; k <= harmonics; ++k) {
+    sum += coefficients[2 * k - 1] * cos(double(k) * angle_rad) +
+           coefficients[2 * k] * sin(double(k) * angle_rad);
+  }
+  return sum;
 }
 
 /// Why a parameter set cannot be used, or an empty string when it can. Checks
@@ -72,5 +131,11 @@ std::string ValidateParameters(const ModelParameters& parameters);
 /// Compliance K (rad/(N·m)) of joint `joint` (0 or 1) at depth L, clamped to
 /// the joint's valid depth range.
 double ComplianceAt(const JointParameters& joint, double depth_m);
+
+/// tau0 (N·m) of a joint at its angle q (rad) and depth L (m), in either form.
+double BiasTorqueAt(const JointParameters& joint, double angle_rad, double depth_m);
+
+/// "inverse_cubic", "direct_cubic", "beam_series" (the parameters file's words).
+const char* ComplianceFormName(ComplianceForm form);
 
 }  // namespace pliant::models

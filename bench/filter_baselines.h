@@ -1,0 +1,220 @@
+#pragma once
+// The two baselines the online filter is measured against (bench/filter_bench.cpp),
+// implementing the same model as estimation/filter.h (its header states it):
+//   DenseFixedEkf    — a straightforward fixed-size Eigen EKF: the 8-state
+//                      process and the 4 measurements (q1, q2, tau1, tau2) as
+//                      functions of the whole state, Jacobians by ceres::Jet<8>,
+//                      dense F P Fᵀ + Q, batch update with a 4×4 S and the
+//                      dense Joseph form (I − K H) P (I − K H)ᵀ + K R Kᵀ.
+//   DenseDynamicEkf  — the same with Eigen::MatrixXd / VectorXd.
+// No gating, mismatch test or reference channel: the bench feeds clean data.
+// Header-only so that a test can check the fast filter against it.
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+#include <ceres/jet.h>
+
+#include "pliant/estimation/filter.h"
+#include "pliant/models/effects/backlash_hysteresis.h"
+#include "pliant/models/effects/compliance.h"
+#include "pliant/models/parameters.h"
+
+namespace pliant::bench {
+
+using Jet8 = ceres::Jet<double, 8>;
+
+// State order: (q_tip, tau, b, s) of joint 1, then of joint 2.
+class EkfModel {
+ public:
+  EkfModel(const models::ModelParameters& p, const estimation::FilterOptions& o)
+      : parameters_(p), options_(o), compliance_(p.joints[0], p.joints[1]) {
+    for (int j = 0; j < 2; ++j) {
+      for (int i = 0; i < 4; ++i) coefficients_[4 * j + i] = Jet8(p.joints[j].compliance.cubic.coefficients[i]);
+      delta_[j] = p.joints[j].backlash_rad;
+      width_[j] = std::max(p.joints[j].deadzone_width_nm,
+                           o.backlash_width_noise_multiple * o.effort_noise_nm);
+    }
+  }
+
+  template <typename T>
+  void Process(const T* x, bool tip_fixed, const Eigen::Vector2d& increment, T* next) const {
+    for (int j = 0; j < 2; ++j) {
+      const T* xj = x + 4 * j;
+      T* nj = next + 4 * j;
+      nj[0] = xj[0] + (tip_fixed ? 0.0 : increment[j]);
+      nj[1] = xj[1];
+      nj[2] = models::BacklashHysteresisStep(xj[2], xj[1], delta_[j], width_[j]);
+      nj[3] = xj[3];
+    }
+  }
+
+  // (q_enc1, q_enc2, tau1, tau2) predicted from the state.
+  void Measure(const Jet8* x, double depth, Jet8* z) const {
+    models::JointState<Jet8> state;
+    state.insertion_depth_m = Jet8(depth);
+    state.external_torque_nm << x[1], x[5];
+    const models::Vec2<Jet8> bend = compliance_(coefficients_, state);
+    for (int j = 0; j < 2; ++j) {
+      z[j] = x[4 * j] + x[4 * j + 2] + x[4 * j + 3] * bend[j];
+      z[2 + j] = x[4 * j + 1];
+    }
+  }
+
+  Eigen::Matrix<double, 8, 1> ProcessNoise(const Eigen::Matrix<double, 8, 1>& x, bool tip_fixed,
+                                           double dt) const {
+    const auto& o = options_;
+    Eigen::Matrix<double, 8, 1> q;
+    for (int j = 0; j < 2; ++j) {
+      const double sat = models::SmoothSaturation(x[4 * j + 1] / width_[j]);
+      q[4 * j] = tip_fixed ? 0.0 : o.free_tip_rate_rad * o.free_tip_rate_rad * dt;
+      q[4 * j + 1] = o.external_torque_rate_nm * o.external_torque_rate_nm * dt;
+      q[4 * j + 2] = ((1.0 - sat * sat) * o.backlash_rate_rad * o.backlash_rate_rad +
+                      o.backlash_pinned_rate_rad * o.backlash_pinned_rate_rad) * dt;
+      q[4 * j + 3] = o.compliance_scale_rate * o.compliance_scale_rate * dt;
+    }
+    return q;
+  }
+
+  double SteadyBacklash(int j, double tau) const {
+    return delta_[j] * models::SmoothSaturation(tau / width_[j]);
+  }
+  double Compliance(int j, double depth) const {
+    return models::ComplianceAt(parameters_.joints[j], depth);
+  }
+  double BacklashCap(int j) const { return delta_[j] * delta_[j] / 3.0; }
+  double Bias(int j, double q, double depth) const {
+    return models::BiasTorqueAt(parameters_.joints[j], q, depth);
+  }
+  const estimation::FilterOptions& options() const { return options_; }
+  double delta(int j) const { return delta_[j]; }
+
+ private:
+  models::ModelParameters parameters_;
+  estimation::FilterOptions options_;
+  models::ComplianceEffect compliance_;
+  Jet8 coefficients_[8];
+  double delta_[2], width_[2];
+};
+
+struct FixedSizeTypes {
+  using V8 = Eigen::Matrix<double, 8, 1>;
+  using M88 = Eigen::Matrix<double, 8, 8>;
+  using M48 = Eigen::Matrix<double, 4, 8>;
+  using M84 = Eigen::Matrix<double, 8, 4>;
+  using V4 = Eigen::Vector4d;
+  using M44 = Eigen::Matrix4d;
+};
+struct DynamicSizeTypes {
+  using V8 = Eigen::VectorXd;
+  using M88 = Eigen::MatrixXd;
+  using M48 = Eigen::MatrixXd;
+  using M84 = Eigen::MatrixXd;
+  using V4 = Eigen::VectorXd;
+  using M44 = Eigen::MatrixXd;
+};
+
+// Everything but the matrix types is shared.
+template <typename Types>
+class DenseEkf {
+  using Vector = typename Types::V8;
+  using Matrix = typename Types::M88;
+
+ public:
+  DenseEkf(const models::ModelParameters& p, const estimation::FilterOptions& o)
+      : model_(p, o), x_(Vector::Zero(8)), p_(Matrix::Zero(8, 8)) {}
+
+  void Step(const estimation::FilterSample& s) {
+    const auto& o = model_.options();
+    if (!initialised_) {
+      for (int j = 0; j < 2; ++j) {
+        const double tau = s.effort_nm[j] - model_.Bias(j, s.encoder_rad[j], s.insertion_depth_m);
+        const double b = model_.SteadyBacklash(j, tau);
+        x_.template segment<4>(4 * j) << s.encoder_rad[j] - b - model_.Compliance(j, s.insertion_depth_m) * tau,
+            tau, b, 1.0;
+        p_(4 * j, 4 * j) = o.initial_tip_sd_rad * o.initial_tip_sd_rad;
+        p_(4 * j + 1, 4 * j + 1) = o.initial_torque_sd_nm * o.initial_torque_sd_nm;
+        p_(4 * j + 2, 4 * j + 2) = model_.BacklashCap(j) + 1e-14;
+        p_(4 * j + 3, 4 * j + 3) = o.compliance_scale_sd * o.compliance_scale_sd;
+      }
+      initialised_ = true;
+      last_time_ = s.time_s;
+      last_encoder_ = s.encoder_rad;
+    } else {
+      Predict(s);
+    }
+    Update(s);
+  }
+
+  const Vector& mean() const { return x_; }
+  const Matrix& covariance() const { return p_; }
+
+ private:
+  void Predict(const estimation::FilterSample& s) {
+    double dt = s.time_s - last_time_;
+    if (!(dt > 0.0)) dt = model_.options().sample_period_s;
+    last_time_ = s.time_s;
+    Eigen::Vector2d increment = s.encoder_rad - last_encoder_;
+    for (int j = 0; j < 2; ++j) {
+      if (!(std::abs(increment[j]) <= 5.0 * dt)) increment[j] = 0.0;
+    }
+    last_encoder_ = s.encoder_rad;
+    Jet8 x[8], next[8];
+    for (int i = 0; i < 8; ++i) x[i] = Jet8(x_[i], i);
+    model_.Process(x, s.tip_fixed, increment, next);
+    Matrix f(8, 8);
+    for (int i = 0; i < 8; ++i) {
+      x_[i] = next[i].a;
+      f.row(i) = next[i].v.transpose();
+    }
+    Eigen::Matrix<double, 8, 1> q = model_.ProcessNoise(x_, s.tip_fixed, dt);
+    p_ = (f * p_ * f.transpose()).eval();
+    for (int j = 0; j < 2; ++j) {
+      const int b = 4 * j + 2;
+      q[b] = std::min(q[b], std::max(0.0, model_.BacklashCap(j) - p_(b, b)));
+    }
+    p_.diagonal() += q;
+  }
+
+  void Update(const estimation::FilterSample& s) {
+    const auto& o = model_.options();
+    Jet8 x[8], z[4];
+    for (int i = 0; i < 8; ++i) x[i] = Jet8(x_[i], i);
+    model_.Measure(x, s.insertion_depth_m, z);
+    typename Types::M48 h(4, 8);
+    typename Types::V4 innovation(4);
+    for (int i = 0; i < 4; ++i) h.row(i) = z[i].v.transpose();
+    for (int j = 0; j < 2; ++j) {
+      innovation[j] = s.encoder_rad[j] - z[j].a;
+      innovation[2 + j] =
+          s.effort_nm[j] - model_.Bias(j, s.encoder_rad[j], s.insertion_depth_m) - z[2 + j].a;
+    }
+    typename Types::M44 r = Types::M44::Zero(4, 4);
+    r(0, 0) = r(1, 1) = o.encoder_noise_rad * o.encoder_noise_rad;
+    r(2, 2) = r(3, 3) = o.effort_noise_nm * o.effort_noise_nm;
+    const typename Types::M84 ph = p_ * h.transpose();
+    const typename Types::M44 innovation_cov = h * ph + r;
+    const typename Types::M84 gain = innovation_cov.ldlt().solve(ph.transpose()).transpose();
+    x_ += gain * innovation;
+    const Matrix a = Matrix::Identity(8, 8) - gain * h;
+    p_ = (a * p_ * a.transpose() + gain * r * gain.transpose()).eval();
+    p_ = (0.5 * (p_ + p_.transpose())).eval();
+    for (int j = 0; j < 2; ++j) {
+      x_[4 * j + 2] = std::clamp(x_[4 * j + 2], -model_.delta(j), model_.delta(j));
+    }
+  }
+
+  EkfModel model_;
+  Vector x_;
+  Matrix p_;
+  bool initialised_ = false;
+  double last_time_ = 0.0;
+  Eigen::Vector2d last_encoder_{0.0, 0.0};
+};
+
+using DenseFixedEkf = DenseEkf<FixedSizeTypes>;
+using DenseDynamicEkf = DenseEkf<DynamicSizeTypes>;
+
+}  // namespace pliant::bench

@@ -1,0 +1,157 @@
+// step() of the online filter, side by side in one run with
+//   equation2      — the paper's correction (ComplianceCorrector): the floor,
+//   dense_fixed    — a straightforward fixed-size Eigen EKF of the same model
+//                    (Jet Jacobians, dense Joseph update; bench/filter_baselines.h),
+//   dense_dynamic  — the same with dynamic-size Eigen matrices,
+// on a 1.5 kHz divot-push log drawn from the model. Each benchmark times every
+// step on its own (steady_clock, its overhead subtracted) and reports the
+// median and the 99th percentile in ns, and the heap allocations per step.
+// offline_900k filters and smooths 10 minutes of log (900,000 samples). Run:
+//   build/bench/filter_bench --benchmark_counters_tabular=true
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstdlib>
+#include <new>
+#include <vector>
+
+#include "../tests/estimation/filter_synthetic.h"
+#include "filter_baselines.h"
+#include "pliant/estimation/compliance_correction.h"
+#include "pliant/estimation/filter.h"
+#include "pliant/estimation/filter_smoother.h"
+
+// Heap allocations are counted while `counting` is set.
+namespace {
+std::atomic<long> allocations{0};
+std::atomic<bool> counting{false};
+}  // namespace
+void* operator new(std::size_t size) {
+  if (counting.load(std::memory_order_relaxed)) allocations.fetch_add(1, std::memory_order_relaxed);
+  if (void* p = std::malloc(size ? size : 1)) return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+
+namespace {
+
+using pliant::estimation::FilterSample;
+using Clock = std::chrono::steady_clock;
+
+const std::vector<FilterSample>& Samples() {
+  static const std::vector<FilterSample> samples = [] {
+    pliant::estimation::testing::SyntheticOptions so;
+    so.duration_s = 20.0;
+    so.load_noise_nm = 0.1;
+    return pliant::estimation::testing::MakeSyntheticRun(
+               pliant::models::testing::PaperParameters(), pliant::estimation::FilterOptions{}, so)
+        .samples;
+  }();
+  return samples;
+}
+
+double ClockOverheadNs() {
+  static const double overhead = [] {
+    std::vector<double> d(100000);
+    for (auto& v : d) {
+      const auto a = Clock::now();
+      const auto b = Clock::now();
+      v = std::chrono::duration<double, std::nano>(b - a).count();
+    }
+    std::nth_element(d.begin(), d.begin() + d.size() / 2, d.end());
+    return d[d.size() / 2];
+  }();
+  return overhead;
+}
+
+// Runs `step(sample)` once per iteration over the log (time continuing past
+// its end), timing each call on its own.
+template <typename Step>
+void TimeSteps(benchmark::State& state, Step&& step) {
+  const auto& samples = Samples();
+  const double overhead = ClockOverheadNs();
+  std::vector<double> ns;
+  ns.reserve(4'000'000);
+  std::size_t k = 0;
+  const double dt = 1.0 / 1500.0;
+  allocations = 0;
+  counting = true;
+  for (auto _ : state) {
+    FilterSample s = samples[k % samples.size()];
+    s.time_s = double(k) * dt;
+    const auto a = Clock::now();
+    step(s);
+    const auto b = Clock::now();
+    if (ns.size() < ns.capacity()) ns.push_back(std::chrono::duration<double, std::nano>(b - a).count() - overhead);
+    ++k;
+  }
+  counting = false;
+  std::sort(ns.begin(), ns.end());
+  state.counters["median_ns"] = ns[ns.size() / 2];
+  state.counters["p99_ns"] = ns[std::size_t(0.99 * double(ns.size()))];
+  state.counters["p99/median"] = ns[std::size_t(0.99 * double(ns.size()))] / ns[ns.size() / 2];
+  state.counters["allocs_per_step"] = double(allocations.load()) / double(k);
+}
+
+void BM_Equation2(benchmark::State& state) {
+  const pliant::estimation::ComplianceCorrector corrector(
+      pliant::models::testing::PaperParameters(), pliant::estimation::CorrectionModel::kPaper);
+  TimeSteps(state, [&](const FilterSample& s) {
+    benchmark::DoNotOptimize(corrector.Correct(
+        Eigen::Vector3d(s.encoder_rad[0], s.encoder_rad[1], s.insertion_depth_m), s.effort_nm));
+  });
+}
+
+void BM_FilterStep(benchmark::State& state) {
+  pliant::estimation::ComplianceFilter filter(pliant::models::testing::PaperParameters());
+  TimeSteps(state, [&](const FilterSample& s) { benchmark::DoNotOptimize(filter.Step(s)); });
+}
+
+void BM_DenseFixedEkf(benchmark::State& state) {
+  pliant::bench::DenseFixedEkf ekf(pliant::models::testing::PaperParameters(), {});
+  TimeSteps(state, [&](const FilterSample& s) {
+    ekf.Step(s);
+    benchmark::DoNotOptimize(ekf.mean());
+  });
+}
+
+void BM_DenseDynamicEkf(benchmark::State& state) {
+  pliant::bench::DenseDynamicEkf ekf(pliant::models::testing::PaperParameters(), {});
+  TimeSteps(state, [&](const FilterSample& s) {
+    ekf.Step(s);
+    benchmark::DoNotOptimize(ekf.mean());
+  });
+}
+
+// 10 minutes at 1.5 kHz: filter forward, smooth backward, read every estimate.
+void BM_Offline900k(benchmark::State& state) {
+  const auto& samples = Samples();
+  constexpr std::size_t kSamples = 900'000;
+  for (auto _ : state) {
+    pliant::estimation::FilterSmoother smoother(pliant::models::testing::PaperParameters());
+    smoother.Reserve(kSamples);
+    for (std::size_t k = 0; k < kSamples; ++k) {
+      FilterSample s = samples[k % samples.size()];
+      s.time_s = double(k) / 1500.0;
+      smoother.Add(s);
+    }
+    smoother.Smooth();
+    double sum = 0.0;
+    for (std::size_t k = 0; k < kSamples; ++k) sum += smoother.Estimate(k).corrected_rad[0];
+    benchmark::DoNotOptimize(sum);
+  }
+  state.counters["samples"] = double(kSamples);
+}
+
+BENCHMARK(BM_Equation2)->Iterations(2'000'000);
+BENCHMARK(BM_FilterStep)->Iterations(2'000'000);
+BENCHMARK(BM_DenseFixedEkf)->Iterations(2'000'000);
+BENCHMARK(BM_DenseDynamicEkf)->Iterations(1'000'000);
+BENCHMARK(BM_Offline900k)->Iterations(1)->Unit(benchmark::kSecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();

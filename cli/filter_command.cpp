@@ -1,0 +1,96 @@
+// pliant filter: the online EKF over a log (streamed), or the RTS smoother
+// over the whole log (--smooth), written atomically with the filter's columns.
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include "commands.h"
+#include "pliant/estimation/filter_log.h"
+#include "pliant/io/parameters_json.h"
+
+namespace pliant::cli {
+namespace {
+
+struct FilterCommandOptions {
+  std::string params_path;
+  std::string input_path;
+  std::string output_path;
+  bool smooth = false;
+  bool skip_bad_rows = false;
+  estimation::FilterOptions filter;
+};
+
+void PrintAccuracy(const char* label, const estimation::TipErrorStatistics& s) {
+  std::printf("    %-20s RMS %7.3f mm   max %7.3f mm\n", label, s.RmsMm(), s.MaxMm());
+}
+
+void PrintSummary(const FilterCommandOptions& o, const estimation::LogFilterSummary& s) {
+  std::printf("pliant filter: %zu rows%s -> %s\n", s.rows, s.smoothed ? ", RTS smoothed" : "",
+              o.output_path.c_str());
+  if (s.skipped_rows > 0) std::printf("  skipped %zu bad rows (--skip-bad-rows)\n", s.skipped_rows);
+  std::printf("  mean NIS per measurement %.3f (1 when the noise model is right)\n",
+              s.mean_nis_per_dof);
+  std::printf("  rows flagged: rejected %zu, missing %zu, depth out of range %zu, "
+              "effort saturated %zu, model mismatch %zu\n",
+              s.rejected_rows, s.missing_rows, s.depth_out_of_range_rows, s.saturated_rows,
+              s.mismatch_rows);
+  if (s.depth_out_of_range_rows > 0) {
+    std::fprintf(stderr,
+                 "warning: %zu rows have an insertion depth outside the parameters' valid range; "
+                 "K(L) used the nearest valid depth for them\n",
+                 s.depth_out_of_range_rows);
+  }
+  if (s.reference.empty() || s.filtered.count() == 0) return;
+  std::printf("  tip error against %s over %zu rows:\n", s.reference.c_str(), s.filtered.count());
+  PrintAccuracy("uncorrected", s.uncorrected);
+  PrintAccuracy("filter", s.filtered);
+  if (s.smoothed) PrintAccuracy("smoother", s.smoothed_error);
+}
+
+void RunFilter(const FilterCommandOptions& o) {
+  const auto parameters = io::ReadParameters(o.params_path);
+  std::string error;
+  if (!o.filter.IsValid(&error)) throw std::invalid_argument(error);
+  const auto summary =
+      estimation::FilterLog(o.input_path, o.output_path, parameters, o.filter, o.smooth,
+                            "pliant filter, parameters " + o.params_path, {o.skip_bad_rows});
+  PrintSummary(o, summary);
+}
+
+}  // namespace
+
+Command AddFilterCommand(CLI::App& app) {
+  auto o = std::make_shared<FilterCommandOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "filter",
+      "Online EKF over a log: corrected joints 1-2 with covariance, tip correction, NIS, flags "
+      "(docs/filter.md)");
+  sub->add_option("--params", o->params_path, "Parameters file (JSON, docs/parameters.md)")
+      ->required();
+  sub->add_option("input", o->input_path, "Input log (CSV, docs/log-format.md)")->required();
+  sub->add_option("-o,--output", o->output_path, "Output log, written atomically")->required();
+  sub->add_flag("--smooth", o->smooth,
+                "RTS smoother over the whole log (holds it in memory) instead of streaming");
+  sub->add_flag("--skip-bad-rows", o->skip_bad_rows,
+                "Drop and count rows with NaN/Inf/empty required values instead of stopping");
+  auto& f = o->filter;
+  sub->add_option("--effort-noise", f.effort_noise_nm, "Effort noise σ, N·m")
+      ->capture_default_str();
+  sub->add_option("--encoder-noise", f.encoder_noise_rad, "Encoder noise σ, rad")
+      ->capture_default_str();
+  sub->add_option("--torque-rate", f.external_torque_rate_nm,
+                  "Process noise of the external torque, N·m/√s")
+      ->capture_default_str();
+  sub->add_option("--compliance-sd", f.compliance_scale_sd,
+                  "Prior σ of the compliance scale (1 = the parameters' K(L))")
+      ->capture_default_str();
+  sub->add_option("--gate", f.gate_probability,
+                  "Probability a measurement the model explains passes the χ² gate")
+      ->capture_default_str();
+  sub->add_option("--mismatch-window", f.mismatch_window,
+                  "Samples in the windowed NIS test for model mismatch")
+      ->capture_default_str();
+  return [o] { RunFilter(*o); };
+}
+
+}  // namespace pliant::cli

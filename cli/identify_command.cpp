@@ -1,0 +1,133 @@
+// pliant identify: the compliance model from logs, by the paper's procedure or
+// the joint smoother, written as a parameters file with its covariance.
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "commands.h"
+#include "pliant/estimation/identification_report.h"
+#include "pliant/estimation/joint_smoother.h"
+#include "pliant/experiments/plot.h"
+#include "pliant/io/input_error.h"
+#include "pliant/io/log_reader.h"
+#include "pliant/io/parameters_json.h"
+
+namespace pliant::cli {
+namespace {
+
+struct IdentifyOptions {
+  std::vector<std::string> logs;
+  std::string output_path;
+  std::string method = "smoother";
+  std::string law = "inverse_cubic";
+  std::string prior_path;
+  std::string figure_path;
+  int harmonics = 2;
+  bool json = false;
+  bool skip_bad_rows = false;
+};
+
+models::ComplianceForm LawOf(const std::string& name) {
+  if (name == "direct_cubic") return models::ComplianceForm::kDirectCubic;
+  if (name == "beam_series") return models::ComplianceForm::kBeamSeries;
+  return models::ComplianceForm::kInverseCubic;
+}
+
+// The paper's Fig. 6: per-depth 1/K, the fitted law and its 95 % band.
+void DrawFigure(const estimation::IdentificationResult& r, const std::string& path) {
+  experiments::Figure figure;
+  figure.title = "1/K against depth (" + r.method + ")";
+  for (int j = 0; j < 2; ++j) {
+    experiments::PlotPanel panel{"joint " + std::to_string(j + 1), "insertion depth L (m)",
+                                 "1/K (N·m/rad)", {}};
+    experiments::PlotSeries points{"per-depth estimate", {}, {}, "points pt 7 ps 0.8"};
+    for (const auto& e : r.depth_estimates) {
+      if (e.joint == j) points.x.push_back(e.insertion_depth_m), points.y.push_back(e.inverse_compliance_nm_per_rad);
+    }
+    experiments::PlotSeries law{"fitted law", {}, {}, "lines lw 2"};
+    experiments::PlotSeries low{"95 % band", {}, {}, "lines dt 2 lc rgb 'gray40'"};
+    experiments::PlotSeries high{"", {}, {}, "lines dt 2 lc rgb 'gray40'"};
+    const auto& joint = r.parameters.joints[j];
+    for (int i = 0; i <= 60; ++i) {
+      const double depth = joint.depth_min_m + (joint.depth_max_m - joint.depth_min_m) * i / 60.0;
+      const auto at = estimation::QueryParametersAtDepth(r.parameters, depth).joints[j];
+      for (auto* s : {&law, &low, &high}) s->x.push_back(depth);
+      law.y.push_back(at.inverse_compliance_nm_per_rad);
+      low.y.push_back(at.inverse_compliance_nm_per_rad - 1.96 * at.inverse_compliance_sd);
+      high.y.push_back(at.inverse_compliance_nm_per_rad + 1.96 * at.inverse_compliance_sd);
+    }
+    panel.series = {points, law, low, high};
+    figure.panels.push_back(panel);
+  }
+  experiments::WriteFigure(figure, path);
+}
+
+void RunIdentify(const IdentifyOptions& options) {
+  estimation::IdentificationData data;
+  for (const auto& path : options.logs) {
+    estimation::AppendSamples(io::ReadLog(path, {options.skip_bad_rows}), path, {}, &data);
+  }
+  const models::ModelParameters prior =
+      options.prior_path.empty() ? estimation::PaperPrior() : io::ReadParameters(options.prior_path);
+  estimation::IdentificationResult result;
+  if (options.method == "paper") {
+    estimation::PaperProcedureOptions paper;
+    paper.law = LawOf(options.law);
+    result = estimation::RunPaperProcedure(data, prior, paper);
+  } else {
+    estimation::JointSmootherOptions smoother;
+    smoother.law = LawOf(options.law);
+    smoother.bias_harmonics = options.harmonics;
+    result = estimation::RunJointSmoother(data, prior, smoother);
+  }
+  result.parameters.description = "identified by pliant identify (" + result.method + ", " +
+                                   options.law + ") from " + std::to_string(options.logs.size()) +
+                                   " log(s)";
+  io::WriteParameters(options.output_path, result.parameters);
+  const auto laws = estimation::CompareLaws(result);
+  if (options.json) {
+    auto json = estimation::IdentificationJson(result, data, laws);
+    json["output"] = options.output_path;
+    std::printf("%s\n", json.dump(2).c_str());
+  } else {
+    std::printf("pliant identify: %s", estimation::IdentificationTable(result, data, laws).c_str());
+    std::printf("  wrote %s\n", options.output_path.c_str());
+  }
+  for (const auto& w : result.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  if (!options.figure_path.empty()) DrawFigure(result, options.figure_path);
+}
+
+}  // namespace
+
+Command AddIdentifyCommand(CLI::App& app) {
+  auto options = std::make_shared<IdentifyOptions>();
+  CLI::App* sub = app.add_subcommand(
+      "identify", "Identify compliance, backlash and bias torque from logs (docs/identification.md)");
+  sub->add_option("logs", options->logs, "Logs (CSV): free-tip rows feed the bias, tip_fixed rows "
+                                         "the compliance and backlash")
+      ->required();
+  sub->add_option("-o,--output", options->output_path, "Parameters file to write (JSON), atomically")
+      ->required();
+  sub->add_option("--method", options->method,
+                  "paper: the paper's procedure; smoother: one Ceres problem with covariance")
+      ->check(CLI::IsMember({"paper", "smoother"}))
+      ->capture_default_str();
+  sub->add_option("--model", options->law, "Compliance law K(L)")
+      ->check(CLI::IsMember({"inverse_cubic", "direct_cubic", "beam_series"}))
+      ->capture_default_str();
+  sub->add_option("--prior", options->prior_path,
+                  "Parameters the priors are centred on (default: the paper's, data/paper.json)");
+  sub->add_option("--harmonics", options->harmonics, "Fourier harmonics of the bias torque")
+      ->check(CLI::Range(0, 6))
+      ->capture_default_str();
+  sub->add_option("--figure", options->figure_path,
+                  "Also draw 1/K against depth with the law and its 95 % band (.png or .svg)");
+  sub->add_flag("--json", options->json, "Print the results as JSON");
+  sub->add_flag("--skip-bad-rows", options->skip_bad_rows,
+                "Drop and count rows with NaN/Inf/empty required values instead of stopping");
+  return [options] { RunIdentify(*options); };
+}
+
+}  // namespace pliant::cli

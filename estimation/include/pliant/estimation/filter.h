@@ -1,0 +1,171 @@
+#pragma once
+// The online filter: an extended Kalman filter that treats compliance and
+// backlash of PSM joints 1 (yaw) and 2 (pitch) as states, fuses encoders and
+// efforts every control period, and returns corrected joint angles with their
+// covariance. docs/filter.md derives it; this header is the contract.
+//
+// State, per joint j (both joints in one filter, 8 states):
+//   q_tip_j   rad    corrected (tip-consistent) joint angle
+//   tau_j     N·m    external torque
+//   b_j       rad    backlash offset inside the clearance, |b_j| <= delta_j
+//   s_j       1      compliance scale: the shaft's compliance is s_j·K_j(L)
+//
+// Process (period dt):
+//   q_tip+ = q_tip                           while the tip is fixed (no noise)
+//   q_tip+ = q_tip + (q_enc,k − q_enc,k−1)    otherwise, + noise σ_free²·dt
+//   tau+   = tau + noise σ_τ̇²·dt            (random walk)
+//   b+     = BacklashHysteresisStep(b, tau)  (models/effects/backlash_hysteresis.h)
+//            + noise (σ_b²·(1 − S(tau/w)²) + σ_pinned²)·dt, variance ≤ δ²/3
+//   s+     = s + noise σ_ṡ²·dt
+// Measurements:
+//   q_enc_j  = q_tip_j + b_j + s_j·K_j(L)·tau_j   (ComplianceEffect)   σ_enc
+//   tau_meas_j − tau0_j(q_enc, L) = tau_j          (bias torque)        σ_effort
+//   q_ref_j  = q_tip_j                             (when the log has it) σ_ref
+// Jacobians come from ceres::Jet. The joints share no state and no
+// measurement while no coupling effect is on, so the filter runs two 4-state
+// blocks with sequential scalar updates (Joseph form); q12_cov is then zero.
+//
+// Real time: Step() never allocates, never throws, and takes a bounded time
+// (no loops that depend on the data). A Filter object is not thread-safe: one
+// control thread owns it; distinct objects are independent and may run on
+// different threads (they share only immutable parameters they copied).
+
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "pliant/models/parameters.h"
+
+namespace pliant::estimation {
+
+/// Noise levels, gates and the mismatch test. Defaults: a Classic PSM at
+/// 1.5 kHz (reference/dvrk.md) with the simulator's sensor noise.
+struct FilterOptions {
+  double sample_period_s = 1.0 / 1500.0;  ///< used when t does not give one
+  // Measurement noise (standard deviations).
+  double encoder_noise_rad = 7.7e-6 / 3.4641016151377544;  ///< one count / √12
+  double effort_noise_nm = 0.01;
+  double reference_noise_rad = 5e-5;   ///< q1_ref, q2_ref (an optical tracker)
+  // Process noise (standard deviations per √s).
+  double external_torque_rate_nm = 0.1;   ///< σ_τ̇, N·m/√s
+  double backlash_rate_rad = 0.05;        ///< σ_b at no load, rad/√s
+  double backlash_pinned_rate_rad = 2e-4; ///< σ_b with the shaft loaded onto a wall, rad/√s
+  double compliance_scale_rate = 0.0;     ///< σ_ṡ, 1/√s
+  /// σ_free, rad/√s, tip not fixed. Large on purpose: a free tip is wherever
+  /// the encoder puts it (less the deflection), and the prior of compliance and
+  /// backlash must not be "learned" from encoder increments that contain them.
+  double free_tip_rate_rad = 1.0;
+  /// The filter's dead-zone width is max(w from the parameters, this × σ_effort).
+  double backlash_width_noise_multiple = 10.0;
+  // Priors.
+  double compliance_scale_sd = 0.1;       ///< s starts at 1 ± this
+  double initial_torque_sd_nm = 1.0;
+  double initial_tip_sd_rad = 0.05;
+  // Robustness.
+  double gate_probability = 0.9999;  ///< χ²(1) gate on each scalar innovation
+  int reacquire_after = 25;          ///< consecutive rejections before re-acquiring
+  double effort_limit_nm = 3.316;    ///< |tau_meas| at or beyond: saturated, not used
+  // Model mismatch: windowed NIS χ² test.
+  int mismatch_window = 300;               ///< samples (0.2 s at 1.5 kHz)
+  double mismatch_probability = 0.99;      ///< false-alarm rate per window = 1 − this
+
+  /// True when every value is usable; otherwise false and *error says which
+  /// option is wrong and what to do.
+  bool IsValid(std::string* error) const;
+};
+
+/// One control period's input. NaN marks a missing value.
+struct FilterSample {
+  double time_s = 0.0;
+  Eigen::Vector2d encoder_rad{0.0, 0.0};      ///< q1, q2
+  double insertion_depth_m = 0.15;            ///< q3
+  Eigen::Vector2d effort_nm{0.0, 0.0};        ///< tau1, tau2
+  Eigen::Vector2d reference_rad{kMissing, kMissing};  ///< q1_ref, q2_ref
+  bool tip_fixed = false;                     ///< the tip is clamped or in a divot
+
+  static constexpr double kMissing = std::numeric_limits<double>::quiet_NaN();
+};
+
+/// Bits of FilterEstimate::flags.
+enum FilterFlag : std::uint32_t {
+  kFlagRejected = 1u << 0,         ///< a measurement failed the χ² gate
+  kFlagMissing = 1u << 1,          ///< a NaN measurement (or depth) was skipped
+  kFlagDepthOutOfRange = 1u << 2,  ///< q3 outside the parameters' valid depths
+  kFlagEffortSaturated = 1u << 3,  ///< |tau| at the effort limit: effort not used
+  kFlagModelMismatch = 1u << 4,    ///< windowed NIS beyond its χ² quantile
+  kFlagReacquired = 1u << 5,       ///< covariance inflated after repeated rejections
+  kFlagRepaired = 1u << 6,         ///< covariance was not positive definite and was repaired
+};
+
+/// One control period's output.
+struct FilterEstimate {
+  Eigen::Vector2d corrected_rad{0.0, 0.0};   ///< q_tip: q̂1, q̂2
+  Eigen::Matrix2d covariance_rad2 = Eigen::Matrix2d::Zero();  ///< of q̂1, q̂2
+  double tip_correction_mm = 0.0;     ///< |uncorrected tip − corrected tip| through the kinematics
+  double tip_correction_sd_mm = 0.0;  ///< its standard deviation
+  double nis = 0.0;                   ///< normalised innovation squared of the accepted updates
+  int nis_dof = 0;                    ///< how many scalar measurements it sums
+  double window_nis = 0.0;            ///< sum of NIS over the mismatch window
+  double window_threshold = 0.0;      ///< its χ² quantile
+  std::uint32_t flags = 0;            ///< FilterFlag bits
+  Eigen::Vector2d external_torque_nm{0.0, 0.0};
+  Eigen::Vector2d backlash_offset_rad{0.0, 0.0};
+  Eigen::Vector2d compliance_scale{1.0, 1.0};
+};
+
+/// The full state of one joint block: x = (q_tip, tau, b, s) and its 4×4
+/// covariance. What the smoother stores and what tests inspect.
+struct FilterJointState {
+  Eigen::Vector4d mean = Eigen::Vector4d::Zero();
+  Eigen::Matrix4d covariance = Eigen::Matrix4d::Zero();
+};
+
+/// One step's transition of a joint block, kept for the RTS smoother:
+/// predicted mean x_k|k−1, filtered state, and the process model's F (identity
+/// but for b's row) and diagonal Q that produced the prediction.
+struct FilterTransition {
+  Eigen::Vector4d predicted_mean = Eigen::Vector4d::Zero();
+  double f_backlash_torque = 0.0;   ///< ∂b+/∂tau
+  double f_backlash_backlash = 1.0; ///< ∂b+/∂b
+  Eigen::Vector4d process_noise = Eigen::Vector4d::Zero();  ///< diag Q
+  bool predicted = false;           ///< false on the first sample (prior only)
+};
+
+class ComplianceFilter {
+ public:
+  /// Throws std::invalid_argument when the parameters fail
+  /// models::ValidateParameters or the options fail IsValid (with the reason).
+  ComplianceFilter(const models::ModelParameters& parameters, const FilterOptions& options = {});
+  ~ComplianceFilter();
+  ComplianceFilter(const ComplianceFilter&);
+  ComplianceFilter& operator=(const ComplianceFilter&);
+  ComplianceFilter(ComplianceFilter&&) noexcept;
+  ComplianceFilter& operator=(ComplianceFilter&&) noexcept;
+
+  /// Advances one control period. Never allocates, never throws.
+  FilterEstimate Step(const FilterSample& sample) noexcept;
+
+  /// Back to the prior (the next Step initialises from its sample).
+  void Reset() noexcept;
+
+  const FilterOptions& options() const;
+  /// Joint j's (0 or 1) state after the last Step.
+  const FilterJointState& joint_state(int joint) const;
+  /// Joint j's transition in the last Step.
+  const FilterTransition& transition(int joint) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// The output quantities of a joint-block pair, computed the same way for the
+/// filter and the smoother: corrected angles, covariance, tip correction.
+FilterEstimate MakeEstimate(const FilterJointState& joint1, const FilterJointState& joint2,
+                            const Eigen::Vector2d& encoder_rad, double insertion_depth_m);
+
+}  // namespace pliant::estimation

@@ -1,0 +1,50 @@
+#pragma once
+// Runs the online filter over a log and writes it back with the filter's
+// columns added (docs/filter.md):
+//   q1_corr, q2_corr (rad)   corrected joint angles
+//   q1_sd, q2_sd (rad)       their standard deviations
+//   q12_cov (rad²)           their covariance
+//   tip_corr_mm, tip_corr_sd_mm   tip correction through the kinematics, and its σ
+//   nis                      normalised innovation squared of the step
+//   flags                    FilterFlag bits (filter.h)
+// Without smoothing it streams: constant memory, one row in, one row out.
+// With smoothing the whole log is held and the RTS smoother's estimates are
+// written (NIS and flags stay the filter's). Output is atomic.
+
+#include <cstddef>
+#include <string>
+
+#include "pliant/estimation/filter.h"
+#include "pliant/estimation/tip_error_statistics.h"
+#include "pliant/io/log.h"
+#include "pliant/io/log_reader.h"
+
+namespace pliant::estimation {
+
+struct LogFilterSummary {
+  std::size_t rows = 0;
+  std::size_t skipped_rows = 0;        ///< bad rows dropped (skip_bad_rows)
+  std::size_t rejected_rows = 0;       ///< rows with a measurement rejected by the gate
+  std::size_t missing_rows = 0;        ///< rows with a NaN measurement skipped
+  std::size_t depth_out_of_range_rows = 0;
+  std::size_t saturated_rows = 0;
+  std::size_t mismatch_rows = 0;       ///< rows with the model-mismatch flag
+  bool smoothed = false;
+  std::string reference;               ///< "q*_true", "q*_ref", or ""
+  TipErrorStatistics uncorrected;      ///< tip error against the reference, mm
+  TipErrorStatistics filtered;
+  TipErrorStatistics smoothed_error;   ///< when smoothed
+  double mean_nis_per_dof = 0.0;       ///< ≈ 1 when the noise model is right
+};
+
+/// The sample the filter sees in one row of a log with these columns.
+FilterSample SampleFromRow(const io::StandardColumns& columns, const double* row);
+
+/// Throws io::InputError for a bad log and std::system_error when the output
+/// cannot be written; no output file is left behind then.
+LogFilterSummary FilterLog(const std::string& input_path, const std::string& output_path,
+                           const models::ModelParameters& parameters,
+                           const FilterOptions& options, bool smooth,
+                           const std::string& metadata_note, io::LogReaderOptions read_options = {});
+
+}  // namespace pliant::estimation

@@ -1,0 +1,473 @@
+// The online filter (filter.h). Two 4-state joint blocks, sparse prediction,
+// sequential scalar Joseph updates, Jacobians from ceres::Jet. Nothing in
+// Step() allocates or throws: every buffer is sized in the constructor.
+#include "pliant/estimation/filter.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <stdexcept>
+
+#include <ceres/jet.h>
+
+#include "chi_squared.h"
+#include "pliant/models/effects/backlash_hysteresis.h"
+#include "pliant/models/effects/compliance.h"
+#include "pliant/models/psm_kinematics.h"
+
+namespace pliant::estimation {
+namespace {
+
+// One slot per state of a joint block, (q_tip, tau, b, s). Both joints are
+// evaluated in one pass with each joint's inputs seeded in its own block's
+// slots: no effect on the filter's path couples the joints, so each output's
+// derivatives are with respect to its own joint's states.
+using StateJet = ceres::Jet<double, 4>;
+constexpr int kTip = 0, kTorque = 1, kBacklash = 2, kScale = 3;
+enum Channel { kEncoderChannel = 0, kEffortChannel = 1, kReferenceChannel = 2 };
+constexpr int kMaxScalarsPerStep = 6;   // 2 encoders, 2 efforts, 2 references
+constexpr double kMaxJointSpeed = 5.0;  // rad/s: a larger encoder increment is not motion
+constexpr double kMinScale = 0.05, kMaxScale = 20.0;
+constexpr int kExactQuantileDof = 1000;  // Wilson–Hilferty beyond (relative error < 1e-5)
+
+struct StepTally {
+  double nis = 0.0;         // accepted scalars
+  int dof = 0;
+  double window_nis = 0.0;  // accepted + rejected (capped), for the mismatch test
+  int window_dof = 0;
+  std::uint32_t flags = 0;
+};
+
+// Joint j's prior covariance: diag(σ_tip0², σ_τ0², δ²/3, σ_s²); b uniform on ±δ.
+Eigen::Matrix4d PriorCovariance(const FilterOptions& o, double delta) {
+  Eigen::Vector4d d(o.initial_tip_sd_rad * o.initial_tip_sd_rad,
+                    o.initial_torque_sd_nm * o.initial_torque_sd_nm, delta * delta / 3.0 + 1e-14,
+                    o.compliance_scale_sd * o.compliance_scale_sd);
+  return d.asDiagonal();
+}
+
+// The pivots of P = L·D·Lᵀ, unrolled for 4×4: P is positive definite exactly
+// when all four are > 0 (cheaper than a full Cholesky, every step).
+bool IsPositiveDefinite(const Eigen::Matrix4d& p) {
+  const double d0 = p(0, 0);
+  if (!(d0 > 0.0)) return false;
+  const double l10 = p(1, 0) / d0, l20 = p(2, 0) / d0, l30 = p(3, 0) / d0;
+  const double d1 = p(1, 1) - l10 * l10 * d0;
+  if (!(d1 > 0.0)) return false;
+  const double l21 = (p(2, 1) - l20 * l10 * d0) / d1;
+  const double l31 = (p(3, 1) - l30 * l10 * d0) / d1;
+  const double d2 = p(2, 2) - l20 * l20 * d0 - l21 * l21 * d1;
+  if (!(d2 > 0.0)) return false;
+  const double l32 = (p(3, 2) - l30 * l20 * d0 - l31 * l21 * d1) / d2;
+  const double d3 = p(3, 3) - l30 * l30 * d0 - l31 * l31 * d1 - l32 * l32 * d2;
+  return d3 > 0.0;
+}
+
+}  // namespace
+
+struct ComplianceFilter::Impl {
+  Impl(const models::ModelParameters& p, const FilterOptions& o);
+
+  FilterEstimate Step(const FilterSample& sample);
+  void Reset();
+
+  void Initialise(const FilterSample& sample, double depth);
+  void Predict(int j, double dt, bool tip_fixed, double encoder_increment);
+  void EncoderModel(double depth, Eigen::Vector2d* predicted, Eigen::Vector4d* h) const;
+  void ScalarUpdate(int j, Channel channel, const Eigen::Vector4d& h, double innovation,
+                    double variance, StepTally* tally, bool implausible = false);
+  void Repair(int j, const FilterSample& sample, StepTally* tally);
+  void UpdateWindow(StepTally* tally);
+
+  models::ModelParameters parameters;
+  FilterOptions options;
+  models::ComplianceEffect compliance;
+  std::array<StateJet, 8> compliance_coefficients;  // constants (zero derivatives)
+  double delta[2];
+  double width[2];
+  double gate;
+  std::vector<double> window_threshold;  // by total dof in the window
+  std::vector<double> window_nis;        // ring buffer, one entry per sample
+  std::vector<int> window_dof;
+
+  FilterJointState joint[2];
+  FilterTransition transition[2];
+  int rejections[2][3] = {};
+  bool initialised = false;
+  double last_time = 0.0;
+  double depth = 0.15;
+  Eigen::Vector2d last_encoder{0.0, 0.0};
+  bool implausible_jump[2] = {false, false};  // encoder moved faster than any joint can
+  int window_position = 0;
+  int window_count = 0;
+  double window_sum = 0.0;
+  int window_dof_sum = 0;
+};
+
+ComplianceFilter::Impl::Impl(const models::ModelParameters& p, const FilterOptions& o)
+    : parameters(p), options(o), compliance(p.joints[0], p.joints[1]) {
+  const std::string why = models::ValidateParameters(p);
+  if (!why.empty()) throw std::invalid_argument(why);
+  std::string error;
+  if (!o.IsValid(&error)) throw std::invalid_argument(error);
+  for (int j = 0; j < 2; ++j) {
+    const auto& joint_parameters = p.joints[j];
+    for (int i = 0; i < 4; ++i) {
+      compliance_coefficients[4 * j + i] = StateJet(joint_parameters.compliance.cubic.coefficients[i]);
+    }
+    delta[j] = joint_parameters.backlash_rad;
+    // The width over which the filter lets the load pin the shaft: the
+    // parameters' dead-zone width, but never below what the effort noise can
+    // resolve (an identified physical width of 0.02 N·m under 0.01 N·m of
+    // noise would let noise throw the shaft from wall to wall).
+    const double width_nm = joint_parameters.deadzone_width_nm > 0.0
+                                ? joint_parameters.deadzone_width_nm
+                                : std::max(joint_parameters.tau_min_nm, 1e-3);
+    width[j] = std::max(width_nm, o.backlash_width_noise_multiple * o.effort_noise_nm);
+  }
+  depth = 0.5 * (p.joints[0].depth_min_m + p.joints[0].depth_max_m);
+  gate = internal::ChiSquaredQuantile(1.0, o.gate_probability);
+  const int max_dof = kMaxScalarsPerStep * o.mismatch_window;
+  window_threshold.resize(max_dof + 1);
+  window_threshold[0] = 0.0;
+  const double z = std::sqrt(2.0) * [&] {
+    // Normal quantile from χ²(1): z² = χ²₁(2p − 1).
+    return std::sqrt(0.5 * internal::ChiSquaredQuantile(1.0, 2.0 * o.mismatch_probability - 1.0));
+  }();
+  for (int d = 1; d <= max_dof; ++d) {
+    if (d <= kExactQuantileDof) {
+      window_threshold[d] = internal::ChiSquaredQuantile(d, o.mismatch_probability);
+    } else {
+      const double c = 2.0 / (9.0 * d);
+      window_threshold[d] = d * std::pow(1.0 - c + z * std::sqrt(c), 3.0);
+    }
+  }
+  window_nis.assign(o.mismatch_window, 0.0);
+  window_dof.assign(o.mismatch_window, 0);
+  Reset();
+}
+
+void ComplianceFilter::Impl::Reset() {
+  initialised = false;
+  for (int j = 0; j < 2; ++j) {
+    joint[j].mean << 0.0, 0.0, 0.0, 1.0;
+    joint[j].covariance = PriorCovariance(options, delta[j]);
+    transition[j] = FilterTransition{};
+    for (int& r : rejections[j]) r = 0;
+  }
+  std::fill(window_nis.begin(), window_nis.end(), 0.0);
+  std::fill(window_dof.begin(), window_dof.end(), 0);
+  window_position = window_count = window_dof_sum = 0;
+  window_sum = 0.0;
+}
+
+void ComplianceFilter::Impl::Initialise(const FilterSample& sample, double depth_m) {
+  for (int j = 0; j < 2; ++j) {
+    const double q = std::isfinite(sample.encoder_rad[j])     ? sample.encoder_rad[j]
+                     : std::isfinite(sample.reference_rad[j]) ? sample.reference_rad[j]
+                                                              : 0.0;
+    const double tau0 = models::BiasTorqueAt(parameters.joints[j], q, depth_m);
+    const double tau = std::isfinite(sample.effort_nm[j]) ? sample.effort_nm[j] - tau0 : 0.0;
+    // Start where the model puts the tip for this sample (the dead-zone
+    // correction), so that the first encoder update adds no information twice.
+    const double b = delta[j] * models::SmoothSaturation(tau / width[j]);
+    const double tip = q - b - models::ComplianceAt(parameters.joints[j], depth_m) * tau;
+    joint[j].mean << tip, tau, b, 1.0;
+    joint[j].covariance = PriorCovariance(options, delta[j]);
+    transition[j] = FilterTransition{};
+    transition[j].predicted_mean = joint[j].mean;
+    last_encoder[j] = q;
+  }
+  initialised = true;
+}
+
+// F = I but for b's row (∂b+/∂tau, ∂b+/∂b from the hysteresis step's Jet), so
+// F·P·Fᵀ touches only b's row and column.
+void ComplianceFilter::Impl::Predict(int j, double dt, bool tip_fixed, double encoder_increment) {
+  FilterJointState& s = joint[j];
+  FilterTransition& t = transition[j];
+  const StateJet tau(s.mean[kTorque], kTorque);
+  const StateJet b(s.mean[kBacklash], kBacklash);
+  const StateJet next = models::BacklashHysteresisStep(b, tau, delta[j], width[j]);
+  const double fbt = next.v[kTorque];
+  const double fbb = next.v[kBacklash];
+  // How firmly the load holds the shaft on a wall: S² = 1 beyond the width,
+  // 0 at no load. A held shaft diffuses; a loaded one is pinned.
+  const double saturation = models::SmoothSaturation(s.mean[kTorque] / width[j]);
+  const double hold = 1.0 - saturation * saturation;
+
+  s.mean[kTip] += tip_fixed ? 0.0 : encoder_increment;
+  s.mean[kBacklash] = next.a;
+
+  Eigen::Matrix4d& P = s.covariance;
+  const Eigen::Vector4d row = fbt * P.col(kTorque) + fbb * P.col(kBacklash);
+  const double pbb = fbt * row[kTorque] + fbb * row[kBacklash];
+  P.col(kBacklash) = row;
+  P.row(kBacklash) = row.transpose();
+  P(kBacklash, kBacklash) = pbb;
+
+  const auto& o = options;
+  Eigen::Vector4d q;
+  q[kTip] = tip_fixed ? 0.0 : o.free_tip_rate_rad * o.free_tip_rate_rad * dt;
+  q[kTorque] = o.external_torque_rate_nm * o.external_torque_rate_nm * dt;
+  const double diffusion = (hold * o.backlash_rate_rad * o.backlash_rate_rad +
+                            o.backlash_pinned_rate_rad * o.backlash_pinned_rate_rad) * dt;
+  // b lives in ±δ: its variance never needs to exceed the uniform's δ²/3.
+  q[kBacklash] = std::min(diffusion, std::max(0.0, delta[j] * delta[j] / 3.0 - pbb));
+  q[kScale] = o.compliance_scale_rate * o.compliance_scale_rate * dt;
+  P.diagonal() += q;
+
+  t.predicted_mean = s.mean;
+  t.f_backlash_torque = fbt;
+  t.f_backlash_backlash = fbb;
+  t.process_noise = q;
+  t.predicted = true;
+}
+
+// h_j(x) = q_tip_j + b_j + s_j·K_j(L)·tau_j, K from the ComplianceEffect; its
+// Jet gives the value and the row ∂h_j/∂(q_tip, tau, b, s).
+void ComplianceFilter::Impl::EncoderModel(double depth_m, Eigen::Vector2d* predicted,
+                                          Eigen::Vector4d* h) const {
+  models::JointState<StateJet> state;
+  state.insertion_depth_m = StateJet(depth_m);
+  for (int j = 0; j < 2; ++j) {
+    state.external_torque_nm[j] = StateJet(joint[j].mean[kTorque], kTorque);
+  }
+  const models::Vec2<StateJet> bend = compliance(compliance_coefficients.data(), state);
+  for (int j = 0; j < 2; ++j) {
+    const auto& x = joint[j].mean;
+    const StateJet q = StateJet(x[kTip], kTip) + StateJet(x[kBacklash], kBacklash) +
+                       StateJet(x[kScale], kScale) * bend[j];
+    (*predicted)[j] = q.a;
+    h[j] = q.v;
+  }
+}
+
+// Joseph form, P+ = (I − k hᵀ) P (I − k hᵀ)ᵀ + k r kᵀ, for one scalar, after a
+// χ² gate. After `reacquire_after` consecutive rejections on a channel the
+// prior covariance is added to the block and the measurement is taken: the
+// world has changed (a slip, a new contact) and the filter must follow it.
+void ComplianceFilter::Impl::ScalarUpdate(int j, Channel channel, const Eigen::Vector4d& h,
+                                          double innovation, double variance, StepTally* tally,
+                                          bool implausible) {
+  FilterJointState& s = joint[j];
+  Eigen::Matrix4d& P = s.covariance;
+  Eigen::Vector4d u = P * h;
+  double S = h.dot(u) + variance;
+  double nis = innovation * innovation / S;
+  int& rejected = rejections[j][channel];
+  if (implausible || !(nis <= gate)) {
+    tally->window_nis += std::isfinite(nis) ? std::min(nis, 2.0 * gate) : 2.0 * gate;
+    tally->window_dof += 1;
+    tally->flags |= kFlagRejected;
+    if (++rejected < options.reacquire_after || !std::isfinite(S)) return;
+    // Re-acquire. Effort: the torque back to its prior spread. Encoder: the
+    // backlash back to its prior, and the tip as uncertain as the part of the
+    // innovation the clearance cannot explain (a slip, or a start from a bad
+    // sample); a jump within ±δ is left to the backlash, which is what moves
+    // at low load. Reference: the tip, by the innovation.
+    // Each channel re-opens the states it measures most directly.
+    const Eigen::Matrix4d prior = PriorCovariance(options, delta[j]);
+    if (channel == kEffortChannel) P(kTorque, kTorque) += prior(kTorque, kTorque);
+    if (channel == kReferenceChannel) P(kTip, kTip) += innovation * innovation;
+    if (channel == kEncoderChannel) {
+      const double slip = std::max(0.0, std::abs(innovation) - delta[j]);
+      P(kBacklash, kBacklash) += prior(kBacklash, kBacklash);
+      P(kTip, kTip) += slip * slip;
+    }
+    u = P * h;
+    S = h.dot(u) + variance;
+    nis = innovation * innovation / S;
+    tally->flags |= kFlagReacquired;
+  } else {
+    tally->window_nis += nis;
+    tally->window_dof += 1;
+  }
+  rejected = 0;
+  const Eigen::Vector4d k = u / S;
+  // Joseph form for one scalar, P+ = (I − k hᵀ) P (I − k hᵀ)ᵀ + k r kᵀ, which
+  // for any gain k (not only the optimal one) expands exactly to
+  //   P+ = P − k uᵀ − u kᵀ + S k kᵀ = P + k vᵀ + v kᵀ,   v = S k / 2 − u.
+  // Written this way it costs two outer products and is symmetric to the
+  // last bit (each entry adds the same two products in either order).
+  const Eigen::Vector4d v = 0.5 * S * k - u;
+  P += k * v.transpose() + v * k.transpose();
+  s.mean += k * innovation;
+  tally->nis += nis;
+  tally->dof += 1;
+}
+
+void ComplianceFilter::Impl::Repair(int j, const FilterSample& sample, StepTally* tally) {
+  FilterJointState& s = joint[j];
+  s.mean[kBacklash] = std::clamp(s.mean[kBacklash], -delta[j], delta[j]);
+  s.mean[kScale] = std::clamp(s.mean[kScale], kMinScale, kMaxScale);
+  if (!s.mean.allFinite() || !s.covariance.allFinite()) {
+    const double q = std::isfinite(sample.encoder_rad[j]) ? sample.encoder_rad[j] : 0.0;
+    s.mean << q, 0.0, 0.0, 1.0;
+    s.covariance = PriorCovariance(options, delta[j]);
+    tally->flags |= kFlagRepaired;
+    return;
+  }
+  if (!IsPositiveDefinite(s.covariance)) {
+    const double jitter = 1e-12 * s.covariance.diagonal().cwiseAbs().maxCoeff() + 1e-20;
+    s.covariance.diagonal() = s.covariance.diagonal().cwiseAbs().array() + jitter;
+    tally->flags |= kFlagRepaired;
+  }
+}
+
+// Sliding window of the last W samples' NIS: under the model their sum is
+// χ² with the window's scalar count as degrees of freedom.
+void ComplianceFilter::Impl::UpdateWindow(StepTally* tally) {
+  const int w = options.mismatch_window;
+  window_sum += tally->window_nis - window_nis[window_position];
+  window_dof_sum += tally->window_dof - window_dof[window_position];
+  window_nis[window_position] = tally->window_nis;
+  window_dof[window_position] = tally->window_dof;
+  if (++window_position == w) {
+    window_position = 0;
+    window_sum = 0.0;  // re-add exactly once per window: no drift from subtractions
+    for (double v : window_nis) window_sum += v;
+  }
+  window_count = std::min(window_count + 1, w);
+}
+
+FilterEstimate ComplianceFilter::Impl::Step(const FilterSample& sample) {
+  StepTally tally;
+  if (std::isfinite(sample.insertion_depth_m)) {
+    depth = sample.insertion_depth_m;
+  } else {
+    tally.flags |= kFlagMissing;
+  }
+  for (const auto& jp : parameters.joints) {
+    if (depth < jp.depth_min_m || depth > jp.depth_max_m) tally.flags |= kFlagDepthOutOfRange;
+  }
+
+  if (!initialised) {
+    Initialise(sample, depth);
+    last_time = sample.time_s;
+  } else {
+    double dt = sample.time_s - last_time;
+    if (!(dt > 0.0)) dt = options.sample_period_s;
+    dt = std::min(dt, 1.0);
+    if (std::isfinite(sample.time_s)) last_time = sample.time_s;
+    for (int j = 0; j < 2; ++j) {
+      double increment = sample.encoder_rad[j] - last_encoder[j];
+      implausible_jump[j] = std::abs(increment) > kMaxJointSpeed * dt;
+      if (!(std::abs(increment) <= kMaxJointSpeed * dt)) increment = 0.0;
+      Predict(j, dt, sample.tip_fixed, increment);
+    }
+  }
+  for (int j = 0; j < 2; ++j) {
+    if (std::isfinite(sample.encoder_rad[j])) last_encoder[j] = sample.encoder_rad[j];
+  }
+
+  // Efforts: tau_meas − tau0(q_enc, L) = tau (tau0 is evaluated at the
+  // measured angle, an input, so its row is the unit vector of tau).
+  for (int j = 0; j < 2; ++j) {
+    const double effort = sample.effort_nm[j];
+    if (!std::isfinite(effort)) {
+      tally.flags |= kFlagMissing;
+      continue;
+    }
+    if (std::abs(effort) >= options.effort_limit_nm) {
+      tally.flags |= kFlagEffortSaturated;
+      continue;
+    }
+    const double q = std::isfinite(sample.encoder_rad[j]) ? sample.encoder_rad[j]
+                                                          : joint[j].mean[kTip];
+    const double tau0 = models::BiasTorqueAt(parameters.joints[j], q, depth);
+    ScalarUpdate(j, kEffortChannel, Eigen::Vector4d::Unit(kTorque),
+                 effort - tau0 - joint[j].mean[kTorque],
+                 options.effort_noise_nm * options.effort_noise_nm, &tally);
+  }
+  // Encoders, linearised at the state the efforts just updated.
+  Eigen::Vector2d predicted;
+  Eigen::Vector4d h[2];
+  EncoderModel(depth, &predicted, h);
+  for (int j = 0; j < 2; ++j) {
+    if (!std::isfinite(sample.encoder_rad[j])) {
+      tally.flags |= kFlagMissing;
+      continue;
+    }
+    ScalarUpdate(j, kEncoderChannel, h[j], sample.encoder_rad[j] - predicted[j],
+                 options.encoder_noise_rad * options.encoder_noise_rad, &tally,
+                 implausible_jump[j] && !sample.tip_fixed);
+  }
+  for (int j = 0; j < 2; ++j) {
+    const double ref = sample.reference_rad[j];
+    if (!std::isfinite(ref)) continue;  // most logs have no reference: not "missing"
+    ScalarUpdate(j, kReferenceChannel, Eigen::Vector4d::Unit(kTip), ref - joint[j].mean[kTip],
+                 options.reference_noise_rad * options.reference_noise_rad, &tally);
+  }
+  for (int j = 0; j < 2; ++j) Repair(j, sample, &tally);
+  UpdateWindow(&tally);
+
+  FilterEstimate estimate = MakeEstimate(joint[0], joint[1], sample.encoder_rad, depth);
+  estimate.nis = tally.nis;
+  estimate.nis_dof = tally.dof;
+  estimate.window_nis = window_sum;
+  estimate.window_threshold = window_threshold[window_dof_sum];
+  if (window_count == options.mismatch_window && window_dof_sum > 0 &&
+      window_sum > estimate.window_threshold) {
+    tally.flags |= kFlagModelMismatch;
+  }
+  estimate.flags = tally.flags;
+  return estimate;
+}
+
+FilterEstimate MakeEstimate(const FilterJointState& joint1, const FilterJointState& joint2,
+                            const Eigen::Vector2d& encoder_rad, double insertion_depth_m) {
+  FilterEstimate e;
+  const FilterJointState* joints[2] = {&joint1, &joint2};
+  for (int j = 0; j < 2; ++j) {
+    const auto& x = joints[j]->mean;
+    e.corrected_rad[j] = x[kTip];
+    e.covariance_rad2(j, j) = joints[j]->covariance(kTip, kTip);
+    e.external_torque_nm[j] = x[kTorque];
+    e.backlash_offset_rad[j] = x[kBacklash];
+    e.compliance_scale[j] = x[kScale];
+  }
+  // Tip correction: the uncorrected tip (encoders) minus the corrected one,
+  // through J = r·diag(cos q2, 1) (mm/rad); encoders are exact at this scale,
+  // so its covariance is J·C·Jᵀ, and the σ of its length is taken along it.
+  const Eigen::Vector2d q = encoder_rad.allFinite() ? encoder_rad : e.corrected_rad;
+  const Eigen::Matrix2d jac = models::TipDisplacementJacobianMm(
+      Eigen::Vector3d(q[0], q[1], insertion_depth_m));
+  const Eigen::Vector2d shift = jac * (q - e.corrected_rad);
+  const Eigen::Matrix2d tip_cov = jac * e.covariance_rad2 * jac.transpose();
+  e.tip_correction_mm = shift.norm();
+  if (e.tip_correction_mm > 1e-9) {
+    const Eigen::Vector2d along = shift / e.tip_correction_mm;
+    e.tip_correction_sd_mm = std::sqrt(along.dot(tip_cov * along));
+  } else {
+    e.tip_correction_sd_mm = std::sqrt(0.5 * tip_cov.trace());
+  }
+  return e;
+}
+
+ComplianceFilter::ComplianceFilter(const models::ModelParameters& parameters,
+                                   const FilterOptions& options)
+    : impl_(std::make_unique<Impl>(parameters, options)) {}
+ComplianceFilter::~ComplianceFilter() = default;
+ComplianceFilter::ComplianceFilter(const ComplianceFilter& other)
+    : impl_(std::make_unique<Impl>(*other.impl_)) {}
+ComplianceFilter& ComplianceFilter::operator=(const ComplianceFilter& other) {
+  if (this != &other) impl_ = std::make_unique<Impl>(*other.impl_);
+  return *this;
+}
+ComplianceFilter::ComplianceFilter(ComplianceFilter&&) noexcept = default;
+ComplianceFilter& ComplianceFilter::operator=(ComplianceFilter&&) noexcept = default;
+
+FilterEstimate ComplianceFilter::Step(const FilterSample& sample) noexcept {
+  return impl_->Step(sample);
+}
+void ComplianceFilter::Reset() noexcept { impl_->Reset(); }
+const FilterOptions& ComplianceFilter::options() const { return impl_->options; }
+const FilterJointState& ComplianceFilter::joint_state(int joint) const {
+  return impl_->joint[joint];
+}
+const FilterTransition& ComplianceFilter::transition(int joint) const {
+  return impl_->transition[joint];
+}
+
+}  // namespace pliant::estimation

@@ -1,0 +1,170 @@
+#include "pliant/estimation/filter_log.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "pliant/estimation/filter_smoother.h"
+#include "pliant/io/log_writer.h"
+
+namespace pliant::estimation {
+namespace {
+
+double Optional(const double* row, int column) {
+  return column >= 0 ? row[column] : std::numeric_limits<double>::quiet_NaN();
+}
+
+struct OutputColumns {
+  explicit OutputColumns(io::LogHeader& header)
+      : q1(header.AddColumn("q1_corr")),
+        q2(header.AddColumn("q2_corr")),
+        sd1(header.AddColumn("q1_sd")),
+        sd2(header.AddColumn("q2_sd")),
+        cov(header.AddColumn("q12_cov")),
+        tip(header.AddColumn("tip_corr_mm")),
+        tip_sd(header.AddColumn("tip_corr_sd_mm")),
+        nis(header.AddColumn("nis")),
+        flags(header.AddColumn("flags")) {}
+
+  void Fill(const FilterEstimate& e, double* row) const {
+    row[q1] = e.corrected_rad[0];
+    row[q2] = e.corrected_rad[1];
+    row[sd1] = std::sqrt(e.covariance_rad2(0, 0));
+    row[sd2] = std::sqrt(e.covariance_rad2(1, 1));
+    row[cov] = e.covariance_rad2(0, 1);
+    row[tip] = e.tip_correction_mm;
+    row[tip_sd] = e.tip_correction_sd_mm;
+    row[nis] = e.nis;
+    row[flags] = double(e.flags);
+  }
+
+  int q1, q2, sd1, sd2, cov, tip, tip_sd, nis, flags;
+};
+
+struct Reference {
+  int q1 = -1, q2 = -1;
+  std::string name;
+};
+
+Reference FindReference(const io::StandardColumns& c) {
+  if (c.q1_true >= 0 && c.q2_true >= 0) return {c.q1_true, c.q2_true, "q*_true"};
+  if (c.q1_ref >= 0 && c.q2_ref >= 0) return {c.q1_ref, c.q2_ref, "q*_ref"};
+  return {};
+}
+
+class Tally {
+ public:
+  Tally(LogFilterSummary* summary, const io::StandardColumns& in)
+      : summary_(summary), in_(in), reference_(FindReference(in)) {
+    summary_->reference = reference_.name;
+  }
+
+  void Count(const FilterEstimate& e) {
+    ++summary_->rows;
+    summary_->rejected_rows += (e.flags & kFlagRejected) != 0;
+    summary_->missing_rows += (e.flags & kFlagMissing) != 0;
+    summary_->depth_out_of_range_rows += (e.flags & kFlagDepthOutOfRange) != 0;
+    summary_->saturated_rows += (e.flags & kFlagEffortSaturated) != 0;
+    summary_->mismatch_rows += (e.flags & kFlagModelMismatch) != 0;
+    nis_ += e.nis;
+    dof_ += e.nis_dof;
+  }
+
+  void Accuracy(const double* row, const FilterEstimate& e, TipErrorStatistics* stats,
+                bool also_uncorrected) {
+    if (reference_.name.empty()) return;
+    const Eigen::Vector2d truth(row[reference_.q1], row[reference_.q2]);
+    const double depth = row[in_.q3];
+    if (also_uncorrected) {
+      summary_->uncorrected.Add(Eigen::Vector3d(row[in_.q1], row[in_.q2], depth), truth);
+    }
+    stats->Add(Eigen::Vector3d(e.corrected_rad[0], e.corrected_rad[1], depth), truth);
+  }
+
+  void Finish() { summary_->mean_nis_per_dof = dof_ > 0 ? nis_ / double(dof_) : 0.0; }
+
+ private:
+  LogFilterSummary* summary_;
+  const io::StandardColumns& in_;
+  Reference reference_;
+  double nis_ = 0.0;
+  double dof_ = 0.0;
+};
+
+}  // namespace
+
+FilterSample SampleFromRow(const io::StandardColumns& c, const double* row) {
+  FilterSample s;
+  s.time_s = row[c.t];
+  s.encoder_rad << row[c.q1], row[c.q2];
+  s.insertion_depth_m = row[c.q3];
+  s.effort_nm << row[c.tau1], row[c.tau2];
+  s.reference_rad << Optional(row, c.q1_ref), Optional(row, c.q2_ref);
+  s.tip_fixed = Optional(row, c.tip_fixed) >= 0.5;  // NaN compares false: not fixed
+  return s;
+}
+
+LogFilterSummary FilterLog(const std::string& input_path, const std::string& output_path,
+                           const models::ModelParameters& parameters,
+                           const FilterOptions& options, bool smooth,
+                           const std::string& metadata_note, io::LogReaderOptions read_options) {
+  LogFilterSummary summary;
+  summary.smoothed = smooth;
+  if (!smooth) {
+    ComplianceFilter filter(parameters, options);
+    io::LogReader reader(input_path, read_options);
+    io::LogHeader header = reader.header();
+    const io::StandardColumns in(header);
+    const std::size_t input_columns = header.columns.size();
+    const OutputColumns out(header);
+    if (!metadata_note.empty()) header.metadata.emplace_back("filter", metadata_note);
+    io::LogWriter writer(output_path, header);
+    Tally tally(&summary, in);
+    std::vector<double> row(header.columns.size());
+    while (const double* values = reader.Next()) {
+      std::copy(values, values + input_columns, row.begin());
+      const FilterEstimate e = filter.Step(SampleFromRow(in, values));
+      out.Fill(e, row.data());
+      writer.Write(row.data());
+      tally.Count(e);
+      tally.Accuracy(values, e, &summary.filtered, true);
+    }
+    writer.Commit();
+    summary.skipped_rows = reader.skipped_rows();
+    tally.Finish();
+    return summary;
+  }
+
+  io::Log log = io::ReadLog(input_path, read_options);
+  const io::StandardColumns in(log.header);
+  io::LogHeader header = log.header;
+  const std::size_t input_columns = header.columns.size();
+  const OutputColumns out(header);
+  if (!metadata_note.empty()) header.metadata.emplace_back("filter", metadata_note + ", RTS smoothed");
+  FilterSmoother smoother(parameters, options);
+  const std::size_t rows = log.Rows();
+  smoother.Reserve(rows);
+  Tally tally(&summary, in);
+  for (std::size_t r = 0; r < rows; ++r) {
+    const double* values = &log.values[r * input_columns];
+    const FilterEstimate e = smoother.Add(SampleFromRow(in, values));
+    tally.Count(e);
+    tally.Accuracy(values, e, &summary.filtered, true);
+  }
+  smoother.Smooth();
+  io::LogWriter writer(output_path, header);
+  std::vector<double> row(header.columns.size());
+  for (std::size_t r = 0; r < rows; ++r) {
+    const double* values = &log.values[r * input_columns];
+    std::copy(values, values + input_columns, row.begin());
+    const FilterEstimate e = smoother.Estimate(r);
+    out.Fill(e, row.data());
+    writer.Write(row.data());
+    tally.Accuracy(values, e, &summary.smoothed_error, false);
+  }
+  writer.Commit();
+  tally.Finish();
+  return summary;
+}
+
+}  // namespace pliant::estimation

@@ -1,0 +1,78 @@
+// FilterOptions::IsValid and the χ² quantiles: everything the filter decides
+// before its first Step().
+#include <boost/math/distributions/chi_squared.hpp>
+#include <cmath>
+#include <string>
+
+#include "chi_squared.h"
+#include "pliant/estimation/filter.h"
+
+namespace pliant::estimation {
+namespace internal {
+
+double ChiSquaredQuantile(double dof, double p) {
+  return boost::math::quantile(boost::math::chi_squared(dof), p);
+}
+
+}  // namespace internal
+
+namespace {
+
+bool Fail(std::string* error, const std::string& message) {
+  if (error) *error = message;
+  return false;
+}
+
+}  // namespace
+
+bool FilterOptions::IsValid(std::string* error) const {
+  struct Positive {
+    const char* name;
+    double value;
+    const char* unit;
+  };
+  const Positive positives[] = {
+      {"sample_period_s", sample_period_s, "s"},
+      {"encoder_noise_rad", encoder_noise_rad, "rad"},
+      {"effort_noise_nm", effort_noise_nm, "N·m"},
+      {"reference_noise_rad", reference_noise_rad, "rad"},
+      {"external_torque_rate_nm", external_torque_rate_nm, "N·m/√s"},
+      {"backlash_rate_rad", backlash_rate_rad, "rad/√s"},
+      {"backlash_pinned_rate_rad", backlash_pinned_rate_rad, "rad/√s"},
+      {"free_tip_rate_rad", free_tip_rate_rad, "rad/√s"},
+      {"compliance_scale_sd", compliance_scale_sd, "(a fraction of K)"},
+      {"initial_torque_sd_nm", initial_torque_sd_nm, "N·m"},
+      {"initial_tip_sd_rad", initial_tip_sd_rad, "rad"},
+      {"effort_limit_nm", effort_limit_nm, "N·m"},
+      {"backlash_width_noise_multiple", backlash_width_noise_multiple, "multiples of σ_effort"},
+  };
+  for (const auto& p : positives) {
+    if (!(std::isfinite(p.value) && p.value > 0.0)) {
+      return Fail(error, std::string("FilterOptions::") + p.name + " = " + std::to_string(p.value) +
+                             " must be finite and > 0 — give it in " + p.unit);
+    }
+  }
+  if (!(std::isfinite(compliance_scale_rate) && compliance_scale_rate >= 0.0)) {
+    return Fail(error, "FilterOptions::compliance_scale_rate must be finite and >= 0 — use 0 "
+                       "for a compliance that does not change during the log");
+  }
+  for (const auto& [name, p] : {std::pair<const char*, double>{"gate_probability", gate_probability},
+                                {"mismatch_probability", mismatch_probability}}) {
+    if (!(p > 0.5 && p < 1.0)) {
+      return Fail(error, std::string("FilterOptions::") + name + " = " + std::to_string(p) +
+                             " must lie in (0.5, 1) — it is the probability that a measurement "
+                             "the model explains passes, e.g. 0.9999 or 0.99");
+    }
+  }
+  if (reacquire_after < 1 || reacquire_after > 100000) {
+    return Fail(error, "FilterOptions::reacquire_after must be in [1, 100000] samples — e.g. 25 "
+                       "(17 ms at 1.5 kHz)");
+  }
+  if (mismatch_window < 10 || mismatch_window > 100000) {
+    return Fail(error, "FilterOptions::mismatch_window must be in [10, 100000] samples — e.g. "
+                       "300 (0.2 s at 1.5 kHz)");
+  }
+  return true;
+}
+
+}  // namespace pliant::estimation

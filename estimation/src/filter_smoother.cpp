@@ -1,0 +1,89 @@
+#include "pliant/estimation/filter_smoother.h"
+
+#include <Eigen/Cholesky>
+
+namespace pliant::estimation {
+namespace {
+
+constexpr int kTorque = 1, kBacklash = 2;
+
+// F·P·Fᵀ + Q with F = I but for b's row (as the filter predicts).
+Eigen::Matrix4d Predicted(const Eigen::Matrix4d& p, const FilterTransition& t) {
+  Eigen::Matrix4d out = p;
+  const Eigen::Vector4d row =
+      t.f_backlash_torque * p.col(kTorque) + t.f_backlash_backlash * p.col(kBacklash);
+  out.col(kBacklash) = row;
+  out.row(kBacklash) = row.transpose();
+  out(kBacklash, kBacklash) =
+      t.f_backlash_torque * row[kTorque] + t.f_backlash_backlash * row[kBacklash];
+  out.diagonal() += t.process_noise;
+  return out;
+}
+
+Eigen::Matrix4d TransitionMatrix(const FilterTransition& t) {
+  Eigen::Matrix4d f = Eigen::Matrix4d::Identity();
+  f(kBacklash, kTorque) = t.f_backlash_torque;
+  f(kBacklash, kBacklash) = t.f_backlash_backlash;
+  return f;
+}
+
+}  // namespace
+
+FilterSmoother::FilterSmoother(const models::ModelParameters& parameters,
+                               const FilterOptions& options)
+    : filter_(parameters, options) {}
+
+void FilterSmoother::Reserve(std::size_t samples) { steps_.reserve(samples); }
+
+FilterEstimate FilterSmoother::Add(const FilterSample& sample) {
+  const FilterEstimate estimate = filter_.Step(sample);
+  StepRecord record;
+  for (int j = 0; j < 2; ++j) {
+    record.joint[j].state = filter_.joint_state(j);
+    record.joint[j].transition = filter_.transition(j);
+  }
+  record.encoder_rad = sample.encoder_rad;
+  record.depth_m = std::isfinite(sample.insertion_depth_m) || steps_.empty()
+                       ? sample.insertion_depth_m
+                       : steps_.back().depth_m;
+  record.nis = estimate.nis;
+  record.nis_dof = estimate.nis_dof;
+  record.flags = estimate.flags;
+  steps_.push_back(record);
+  smoothed_ = false;
+  return estimate;
+}
+
+void FilterSmoother::Smooth() {
+  if (smoothed_ || steps_.size() < 2) {
+    smoothed_ = true;
+    return;
+  }
+  for (std::size_t k = steps_.size() - 1; k-- > 0;) {
+    for (int j = 0; j < 2; ++j) {
+      const JointRecord& next = steps_[k + 1].joint[j];
+      if (!next.transition.predicted) continue;  // a restart: nothing links k to k+1
+      FilterJointState& here = steps_[k].joint[j].state;
+      const Eigen::Matrix4d p_pred = Predicted(here.covariance, next.transition);
+      const Eigen::Matrix4d f = TransitionMatrix(next.transition);
+      // C = P̂ Fᵀ (P⁻)⁻¹ = ((P⁻)⁻¹ F P̂)ᵀ, P⁻ and P̂ symmetric.
+      const Eigen::Matrix4d gain =
+          p_pred.ldlt().solve(f * here.covariance).transpose();
+      here.mean += gain * (next.state.mean - next.transition.predicted_mean);
+      here.covariance += gain * (next.state.covariance - p_pred) * gain.transpose();
+      here.covariance = 0.5 * (here.covariance + here.covariance.transpose()).eval();
+    }
+  }
+  smoothed_ = true;
+}
+
+FilterEstimate FilterSmoother::Estimate(std::size_t k) const {
+  const StepRecord& r = steps_.at(k);
+  FilterEstimate e = MakeEstimate(r.joint[0].state, r.joint[1].state, r.encoder_rad, r.depth_m);
+  e.nis = r.nis;
+  e.nis_dof = r.nis_dof;
+  e.flags = r.flags;
+  return e;
+}
+
+}  // namespace pliant::estimation

@@ -1,0 +1,265 @@
+#include "pliant/estimation/joint_smoother.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <memory>
+#include <stdexcept>
+
+#include <ceres/ceres.h>
+#include <ceres/normal_prior.h>
+
+#include "identification_common.h"
+#include "identification_costs.h"
+#include "joint_smoother_setup.h"
+
+namespace pliant::estimation {
+namespace {
+
+using detail::SmootherPrior;
+using detail::SmootherState;
+
+using Noise = detail::SmootherNoise;
+
+// Median number of rows averaged into a held-tip sample.
+double TypicalRows(const IdentificationData& data) {
+  std::vector<int> rows;
+  for (const auto& s : data.samples) if (s.tip_fixed) rows.push_back(s.rows);
+  if (rows.empty()) return 1.0;
+  std::nth_element(rows.begin(), rows.begin() + long(rows.size() / 2), rows.end());
+  return rows[rows.size() / 2];
+}
+
+ceres::CostFunction* Prior(const double* mean, const double* sd, int n) {
+  ceres::Matrix a = ceres::Matrix::Zero(n, n);
+  ceres::Vector b(n);
+  for (int i = 0; i < n; ++i) a(i, i) = 1.0 / sd[i], b[i] = mean[i];
+  return new ceres::NormalPrior(a, b);
+}
+
+class SmootherProblem {
+ public:
+  SmootherProblem(const IdentificationData& data, const SmootherPrior& prior,
+                  const JointSmootherOptions& options, const Noise& noise, SmootherState* state)
+      : state_(state), huber_(options.robust_loss_sd) {
+    ceres::Problem::Options problem_options;
+    problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+    problem_ = std::make_unique<ceres::Problem>(problem_options);
+    ordering_ = std::make_shared<ceres::ParameterBlockOrdering>();
+    const std::array<models::ComplianceForm, 2> forms{options.law, options.law};
+    const bool beam = options.law == models::ComplianceForm::kBeamSeries;
+    const int h = options.bias_harmonics, nb = 2 * h + 2;
+    for (int j = 0; j < 2; ++j) {
+      // The law in units of its prior sd (identification_costs.h says why).
+      std::array<double, 4> scaled_mean, unit{1.0, 1.0, 1.0, 1.0};
+      for (int i = 0; i < 4; ++i) {
+        law_scale_[j][i] = prior.law_sd[j][i];
+        scaled_law_[j][i] = state->law[j][i] / law_scale_[j][i];
+        scaled_mean[i] = prior.law[j][i] / law_scale_[j][i];
+      }
+      Global(scaled_law_[j].data(), 4, scaled_mean.data(), unit.data());
+      if (beam) {  // l_c is geometry; the three compliances are >= 0
+        problem_->SetManifold(scaled_law_[j].data(), new ceres::SubsetManifold(4, {3}));
+        for (int i = 0; i < 3; ++i) problem_->SetParameterLowerBound(scaled_law_[j].data(), i, 0.0);
+      }
+      Global(&state->delta_rad[j], 1, &prior.delta_rad[j], &prior.delta_sd[j]);
+      problem_->SetParameterLowerBound(&state->delta_rad[j], 0, 0.0);
+      Global(&state->log_width[j], 1, &prior.log_width[j], &prior.log_width_sd[j]);
+      // The take-up of the clearance cannot be resolved below the effort noise
+      // of one sample; a hard contact would otherwise drive w to 0, where the
+      // dead zone turns into a step no derivative can follow.
+      const double resolution = std::getenv("PLIANT_TMP_RES") ? std::atof(std::getenv("PLIANT_TMP_RES")) : options.deadzone_resolution_sd;
+      const double floor = std::log(resolution * noise.effort_fixed_nm[j] /
+                                    std::sqrt(TypicalRows(data)));
+      if (options.estimate_deadzone_width) {
+        state->log_width[j] = std::max(state->log_width[j], floor);
+        problem_->SetParameterLowerBound(&state->log_width[j], 0, floor);
+      } else {
+        state->log_width[j] = floor;
+        problem_->SetParameterBlockConstant(&state->log_width[j]);
+      }
+      Global(state->bias[j].data(), nb, prior.bias[j].data(), prior.bias_sd[j].data());
+      if (!options.bias_depth_term) {
+        problem_->SetManifold(state->bias[j].data(), new ceres::SubsetManifold(nb, {nb - 1}));
+      }
+    }
+    for (auto& [segment, tip] : state->tip_rad) {
+      for (int j = 0; j < 2; ++j) {
+        // A weak prior (0.1 rad) keeps a tip the samples barely see finite.
+        const double sd = 0.1;
+        problem_->AddResidualBlock(Prior(&tip[j], &sd, 1), nullptr, &tip[j]);
+        ordering_->AddElementToGroup(&tip[j], 1);
+      }
+    }
+    for (std::size_t i = 0; i < data.samples.size(); ++i) {
+      const auto& s = data.samples[i];
+      const double rows = std::sqrt(double(s.rows));
+      for (int j = 0; j < 2; ++j) {
+        if (!s.tip_fixed) {
+          problem_->AddResidualBlock(
+              detail::NewEffortResidual(s, j, h, options.bias_reference_depth_m,
+                                        noise.effort_free_nm[j] / rows, false),
+              &huber_, state->bias[j].data());
+          continue;
+        }
+        double* tau = &state->tau_ext_nm[i][j];
+        problem_->AddResidualBlock(
+            detail::NewEffortResidual(s, j, h, options.bias_reference_depth_m,
+                                      noise.effort_fixed_nm[j] / rows, true),
+            &huber_, state->bias[j].data(), tau);
+        problem_->AddResidualBlock(
+            detail::NewAngleResidual(s, j, forms, law_scale_[j], noise.angle_fixed_rad[j] / rows),
+            &huber_, tau, &state->tip_rad[s.segment][j], scaled_law_[j].data(), &state->delta_rad[j],
+            &state->log_width[j]);
+        ordering_->AddElementToGroup(tau, 0);  // eliminated first (Schur complement)
+      }
+    }
+  }
+
+  ceres::Solver::Summary Solve(const JointSmootherOptions& options) {
+    ceres::Solver::Options solver;
+    const int global = ordering_->NumElements() - ordering_->GroupSize(0);
+    solver.linear_solver_type = global < 400 ? ceres::DENSE_SCHUR : ceres::SPARSE_SCHUR;
+    if (ordering_->GroupSize(0) > 0) solver.linear_solver_ordering = ordering_;
+    else solver.linear_solver_type = ceres::DENSE_QR;
+    solver.max_num_iterations = options.max_iterations;
+    solver.num_threads = options.threads;
+    solver.function_tolerance = 1e-10;
+    solver.parameter_tolerance = 1e-10;
+    ceres::Solver::Summary summary;
+    ceres::Solve(solver, problem_.get(), &summary);
+    for (int j = 0; j < 2; ++j)
+      for (int i = 0; i < 4; ++i) state_->law[j][i] = scaled_law_[j][i] * law_scale_[j][i];
+    return summary;
+  }
+
+  // Covariance of law1, law2, delta1, delta2, log w1, log w2, bias1, bias2 in
+  // physical units; false when Ceres finds the problem singular.
+  bool GlobalCovariance(const JointSmootherOptions& options, Eigen::MatrixXd* out) {
+    std::vector<const double*> blocks;
+    std::vector<double> scale;
+    for (int j = 0; j < 2; ++j) {
+      blocks.push_back(scaled_law_[j].data());
+      scale.insert(scale.end(), law_scale_[j].begin(), law_scale_[j].end());
+    }
+    for (int j = 0; j < 2; ++j) blocks.push_back(&state_->delta_rad[j]), scale.push_back(1.0);
+    for (int j = 0; j < 2; ++j) blocks.push_back(&state_->log_width[j]), scale.push_back(1.0);
+    for (int j = 0; j < 2; ++j) {
+      blocks.push_back(state_->bias[j].data());
+      scale.insert(scale.end(), state_->bias[j].size(), 1.0);
+    }
+    const long n = long(scale.size());
+    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> c(n, n);
+    ceres::Covariance::Options covariance_options;
+    covariance_options.num_threads = options.threads;
+    ceres::Covariance covariance(covariance_options);
+    std::vector<std::pair<const double*, const double*>> pairs;
+    for (std::size_t a = 0; a < blocks.size(); ++a)
+      for (std::size_t b = a; b < blocks.size(); ++b) pairs.push_back({blocks[a], blocks[b]});
+    if (!covariance.Compute(pairs, problem_.get()) ||
+        !covariance.GetCovarianceMatrix(blocks, c.data())) {
+      return false;
+    }
+    const Eigen::Map<const Eigen::VectorXd> s(scale.data(), n);
+    *out = s.asDiagonal() * Eigen::MatrixXd(c) * s.asDiagonal();
+    return true;
+  }
+
+ private:
+  void Global(double* block, int n, const double* mean, const double* sd) {
+    problem_->AddParameterBlock(block, n);
+    problem_->AddResidualBlock(Prior(mean, sd, n), nullptr, block);
+    ordering_->AddElementToGroup(block, 1);
+  }
+
+  SmootherState* state_;
+  std::array<std::array<double, 4>, 2> scaled_law_{}, law_scale_{};
+  ceres::HuberLoss huber_;
+  std::unique_ptr<ceres::Problem> problem_;
+  std::shared_ptr<ceres::ParameterBlockOrdering> ordering_;
+};
+
+}  // namespace
+
+bool JointSmootherOptions::IsValid(std::string* error) const {
+  if (bias_harmonics < 0 || bias_harmonics > detail::kMaxBiasHarmonics) {
+    *error = "bias_harmonics must be in [0, " + std::to_string(detail::kMaxBiasHarmonics) + "]";
+    return false;
+  }
+  if (!(effort_noise_nm > 0.0) || !(encoder_noise_rad > 0.0) || !(robust_loss_sd > 0.0) ||
+      !(prior_scale > 0.0)) {
+    *error = "effort_noise_nm, encoder_noise_rad, robust_loss_sd and prior_scale must be > 0";
+    return false;
+  }
+  if (!(deadzone_resolution_sd > 0.0)) {
+    *error = "deadzone_resolution_sd must be > 0";
+    return false;
+  }
+  if (max_iterations < 1 || threads < 1 || !(identified_fraction > 0.0)) {
+    *error = "max_iterations and threads must be >= 1, identified_fraction > 0";
+    return false;
+  }
+  return paper.IsValid(error);
+}
+
+namespace detail {
+// joint_smoother_output.cpp: residual statistics, covariance, parameters.
+Noise RescaledNoise(const IdentificationData& data, const SmootherState& state,
+                    const JointSmootherOptions& options, const Noise& noise, std::string* note);
+void FillResult(const IdentificationData& data, const models::ModelParameters& prior,
+                const SmootherPrior& smoother_prior, const JointSmootherOptions& options,
+                SmootherState* state, const Eigen::MatrixXd* covariance,
+                IdentificationResult* result);
+}  // namespace detail
+
+IdentificationResult RunJointSmoother(const IdentificationData& data,
+                                      const models::ModelParameters& prior,
+                                      const JointSmootherOptions& options) {
+  std::string why;
+  if (!options.IsValid(&why)) throw std::invalid_argument("joint smoother options: " + why);
+  const double start = detail::NowSeconds();
+  PaperProcedureOptions paper_options = options.paper;
+  paper_options.law = options.law;
+  paper_options.cannula_length_m = options.cannula_length_m;
+  const IdentificationResult paper = RunPaperProcedure(data, prior, paper_options);
+  const SmootherPrior smoother_prior = detail::MakePrior(prior, options);
+  SmootherState state = detail::MakeInitialState(data, smoother_prior, paper, options);
+
+  Noise noise;
+  for (int j = 0; j < 2; ++j) {
+    noise.effort_free_nm[j] = noise.effort_fixed_nm[j] = options.effort_noise_nm;
+    noise.angle_fixed_rad[j] = options.encoder_noise_rad;
+    // The branch lines' scatter is the held-tip effort noise: start from it.
+    if (paper.effort_rms_nm[j] > 0.0) {
+      noise.effort_fixed_nm[j] = paper.effort_rms_nm[j] * std::sqrt(TypicalRows(data));
+    }
+
+  }
+  IdentificationResult result;
+  result.method = "smoother";
+  result.depth_estimates = paper.depth_estimates;
+  // Two passes: the second weighs the samples by the noise the first found.
+  for (int pass = 0; pass < 2; ++pass) {
+    SmootherProblem problem(data, smoother_prior, options, noise, &state);
+    const ceres::Solver::Summary summary = problem.Solve(options);
+    result.report += "pass " + std::to_string(pass + 1) + ": " + summary.BriefReport() +
+                     " (" + std::to_string(summary.total_time_in_seconds) + " s)\n";
+    if (!summary.IsSolutionUsable()) {
+      throw std::runtime_error("the joint smoother failed: " + summary.message);
+    }
+    if (pass == 0) {
+      std::string note;
+      noise = detail::RescaledNoise(data, state, options, noise, &note);
+      result.report += note;
+      continue;
+    }
+    Eigen::MatrixXd covariance;
+    const bool ok = problem.GlobalCovariance(options, &covariance);
+    detail::FillResult(data, prior, smoother_prior, options, &state, ok ? &covariance : nullptr,
+                       &result);
+  }
+  result.seconds = detail::SecondsSince(start);
+  return result;
+}
+
+}  // namespace pliant::estimation

@@ -1,0 +1,151 @@
+#pragma once
+// Checked access to a scenario's JSON: every problem becomes an io::InputError
+// at the line of the offending key, or at the --set override that put it there.
+
+#include <Eigen/Core>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "pliant/io/input_error.h"
+#include "pliant/io/json_location.h"
+
+namespace pliant::experiments::detail {
+
+using nlohmann::json;
+
+struct Key {
+  const char* name;
+  bool required;
+};
+
+/// A --set override: where it points and how the user wrote it.
+struct Override {
+  std::string pointer;
+  std::string text;
+};
+
+class ScenarioReader {
+ public:
+  ScenarioReader(const std::string& text, std::string file, std::vector<Override> overrides)
+      : file_(std::move(file)), map_(text), overrides_(std::move(overrides)) {}
+
+  [[noreturn]] void Fail(const std::string& pointer, std::string problem, std::string fix) const {
+    for (const Override& o : overrides_) {
+      // The problem lies in what the override set, or in an object it changed.
+      if (pointer.rfind(o.pointer, 0) == 0 || o.pointer.rfind(pointer + "/", 0) == 0) {
+        throw io::InputError("--set " + o.text, 0, 0, std::move(problem), std::move(fix));
+      }
+    }
+    const io::JsonLocation at = map_.Find(pointer);
+    throw io::InputError(file_, at.line, at.column, std::move(problem), std::move(fix));
+  }
+
+  void CheckDuplicates() const {
+    const std::string& pointer = map_.DuplicateKey();
+    if (!pointer.empty()) {
+      Fail(pointer, "duplicate key '" + pointer.substr(pointer.rfind('/') + 1) + "'",
+           "keep only one; JSON readers silently use the last");
+    }
+  }
+
+  /// "/truth/backlash_rad" -> "truth.backlash_rad", as users think of it.
+  static std::string Dotted(const std::string& pointer) {
+    if (pointer.empty()) return "the scenario";
+    std::string out = pointer.substr(1);
+    for (char& c : out) c = c == '/' ? '.' : c;
+    return out;
+  }
+
+  static std::string Child(const std::string& pointer, const std::string& key) {
+    return pointer + "/" + io::JsonPointerToken(key);
+  }
+
+  void Object(const json& value, const std::string& pointer, const std::vector<Key>& keys) const {
+    if (!value.is_object()) {
+      Fail(pointer, Dotted(pointer) + " must be an object, found " + value.type_name(),
+           "write it as { ... } (docs/simulator.md shows every section)");
+    }
+    std::string allowed;
+    for (const Key& key : keys) allowed += (allowed.empty() ? "" : ", ") + std::string(key.name);
+    for (const auto& item : value.items()) {
+      bool known = false;
+      for (const Key& key : keys) known = known || item.key() == key.name;
+      if (!known) {
+        Fail(
+            Child(pointer, item.key()),
+            "unknown key '" + item.key() + "' in " + Dotted(pointer) + "; allowed keys: " + allowed,
+            "remove the key or correct its spelling");
+      }
+    }
+    for (const Key& key : keys) {
+      if (key.required && !value.contains(key.name)) {
+        Fail(pointer, Dotted(pointer) + " has no key '" + key.name + "'",
+             "add \"" + std::string(key.name) + "\" (docs/simulator.md lists the required keys)");
+      }
+    }
+  }
+
+  /// A number in [lower, upper].
+  double Number(const json& value, const std::string& pointer, const char* unit, double lower,
+                double upper) const {
+    if (!value.is_number()) {
+      Fail(pointer, Dotted(pointer) + " must be a number, found " + std::string(value.type_name()),
+           std::string("write a number in ") + unit);
+    }
+    const double x = value.get<double>();
+    if (!(x >= lower && x <= upper)) {
+      Fail(pointer,
+           Dotted(pointer) + " = " + value.dump() + " is outside [" + Text(lower) + ", " +
+               Text(upper) + "] " + unit,
+           "use a value in that range");
+    }
+    return x;
+  }
+
+  int Integer(const json& value, const std::string& pointer, int lower, int upper) const {
+    if (!value.is_number_integer()) {
+      Fail(pointer, Dotted(pointer) + " must be a whole number, found " + value.dump(),
+           "write an integer");
+    }
+    return static_cast<int>(Number(value, pointer, "", lower, upper));
+  }
+
+  std::vector<double> Numbers(const json& value, const std::string& pointer, std::size_t size,
+                              const char* unit, double lower, double upper) const {
+    if (!value.is_array() || value.empty() || (size != 0 && value.size() != size)) {
+      const std::string need = size == 0 ? "a non-empty array" : std::to_string(size) + " values";
+      Fail(pointer, Dotted(pointer) + " must be " + need + ", found " + value.dump(),
+           std::string("write it as [numbers in ") + unit + "]");
+    }
+    std::vector<double> out;
+    for (std::size_t i = 0; i < value.size(); ++i) {
+      out.push_back(Number(value[i], pointer + "/" + std::to_string(i), unit, lower, upper));
+    }
+    return out;
+  }
+
+  Eigen::Vector2d Pair(const json& value, const std::string& pointer, const char* unit,
+                       double lower, double upper) const {
+    const auto v = Numbers(value, pointer, 2, unit, lower, upper);
+    return {v[0], v[1]};
+  }
+
+  std::string String(const json& value, const std::string& pointer) const {
+    if (!value.is_string()) {
+      Fail(pointer, Dotted(pointer) + " must be a string, found " + value.dump(),
+           "write it in double quotes");
+    }
+    return value.get<std::string>();
+  }
+
+  static std::string Text(double x) { return json(x).dump(); }
+
+ private:
+  std::string file_;
+  io::JsonSourceMap map_;
+  std::vector<Override> overrides_;
+};
+
+}  // namespace pliant::experiments::detail

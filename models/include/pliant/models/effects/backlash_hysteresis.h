@@ -1,0 +1,79 @@
+#pragma once
+// Backlash with memory: where the shaft sits inside the cannula clearance
+// depends on the load history, not on the present load alone. A load well
+// beyond the dead-zone width w holds the shaft on the wall it points at; at
+// low load nothing holds it and it stays where it was. Under a steady load the
+// offset settles at the dead-zone position of backlash.h, delta·S(tau/w).
+//
+// The memory is a state, the backlash offset b (rad, |b| <= delta), advanced
+// once per sample by BacklashHysteresisStep:
+//
+//   p  = delta·S(tau/w)                      (S: smooth.h's saturation)
+//   g  = S(tau/w)²                           (how firmly the load holds the shaft)
+//   b+ = b + g·(p − b)
+//
+// so |tau| >= w puts the shaft exactly on the wall (g = 1, p = ±delta), and at
+// |tau| << w the shaft barely moves (g ≈ (15·tau/8w)²). g is a per-sample
+// fraction: at 1.5 kHz, effort noise of 0.06·w relaxes a free shaft toward
+// the centre with a time constant of about 50 ms; a filter that keeps b
+// gives it process noise in proportion to 1 − g, and a fixed tip lets the
+// encoders see it directly. b+, g and their derivatives are continuous in
+// tau and b: the filter differentiates the step with ceres::Jet.
+//
+// As a memoryless effect (the catalogue's interface) it is the steady state,
+// delta·S(tau/w): the dead-zone deflection. The online filter and a simulator
+// that keep b call the step themselves.
+
+#include <string>
+#include <vector>
+
+#include "pliant/models/effect.h"
+#include "pliant/models/smooth.h"
+
+namespace pliant::models {
+
+/// The offset b+ (rad) after one sample at external torque tau (N·m), from the
+/// offset b (rad), for backlash delta (rad) and dead-zone width w (N·m, > 0).
+template <typename T>
+T BacklashHysteresisStep(const T& offset_rad, const T& external_torque_nm, double delta_rad,
+                         double width_nm) {
+  const T saturation = SmoothSaturation(external_torque_nm / width_nm);
+  const T hold = saturation * saturation;
+  return offset_rad + hold * (delta_rad * saturation - offset_rad);
+}
+
+/// Catalogue form: the steady state delta_j·S(tau_j/w_j) per joint (rad).
+/// Parameters: delta1, delta2 (rad), width1, width2 (N·m).
+class BacklashHysteresisEffect {
+ public:
+  static constexpr EffectInfo kInfo{
+      "backlash_hysteresis", Channel::kDeflection,
+      "the load pushes the shaft across the cannula clearance and it stays where it was pushed "
+      "until a load pushes it back (memory state: the offset inside the clearance)"};
+
+  explicit BacklashHysteresisEffect(double delta1_rad = 0.008478, double delta2_rad = 0.007176,
+                                    double width1_nm = 0.1, double width2_nm = 0.2)
+      : defaults_{delta1_rad, delta2_rad, width1_nm, width2_nm} {}
+
+  std::vector<ParameterSpec> Parameters() const {
+    // Priors as for the dead-zone backlash: the clearance is a few mrad, the
+    // width a fraction of a N·m.
+    return {{"delta1", "rad", defaults_[0], 0.0, 0.05, 0.005},
+            {"delta2", "rad", defaults_[1], 0.0, 0.05, 0.005},
+            {"width1", "N·m", defaults_[2], 1e-3, 2.0, 0.1},
+            {"width2", "N·m", defaults_[3], 1e-3, 2.0, 0.1}};
+  }
+
+  template <typename T>
+  Vec2<T> operator()(const T* p, const JointState<T>& state) const {
+    // The parameters enter as Jets too, so that the Jacobian with respect to
+    // delta and w is exact (the step takes them as doubles, for the filter).
+    return {p[0] * SmoothSaturation(state.external_torque_nm[0] / p[2]),
+            p[1] * SmoothSaturation(state.external_torque_nm[1] / p[3])};
+  }
+
+ private:
+  double defaults_[4];
+};
+
+}  // namespace pliant::models
