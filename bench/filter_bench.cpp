@@ -14,7 +14,6 @@
 #include <atomic>
 #include <chrono>
 #include <cstdlib>
-#include <new>
 #include <vector>
 
 #include "../tests/estimation/filter_synthetic.h"
@@ -23,18 +22,17 @@
 #include "pliant/estimation/filter.h"
 #include "pliant/estimation/filter_smoother.h"
 
-// Heap allocations are counted while `counting` is set.
+// Heap allocations are counted while `counting` is set. Every one goes through
+// malloc (operator new does, and so does Eigen's allocator for dynamic sizes).
+extern "C" void* __libc_malloc(std::size_t);
 namespace {
 std::atomic<long> allocations{0};
 std::atomic<bool> counting{false};
 }  // namespace
-void* operator new(std::size_t size) {
+extern "C" void* malloc(std::size_t size) {
   if (counting.load(std::memory_order_relaxed)) allocations.fetch_add(1, std::memory_order_relaxed);
-  if (void* p = std::malloc(size ? size : 1)) return p;
-  throw std::bad_alloc();
+  return __libc_malloc(size);
 }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 
 namespace {
 

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <memory>
 #include <stdexcept>
 
@@ -68,8 +67,7 @@ class SmootherProblem {
       // The take-up of the clearance cannot be resolved below the effort noise
       // of one sample; a hard contact would otherwise drive w to 0, where the
       // dead zone turns into a step no derivative can follow.
-      const double resolution = std::getenv("PLIANT_TMP_RES") ? std::atof(std::getenv("PLIANT_TMP_RES")) : options.deadzone_resolution_sd;
-      const double floor = std::log(resolution * noise.effort_fixed_nm[j] /
+      const double floor = std::log(options.deadzone_resolution_sd * noise.effort_fixed_nm[j] /
                                     std::sqrt(TypicalRows(data)));
       if (options.estimate_deadzone_width) {
         state->log_width[j] = std::max(state->log_width[j], floor);

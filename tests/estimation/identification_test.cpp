@@ -3,6 +3,7 @@
 #include "pliant/estimation/identification.h"
 
 #include <cmath>
+#include <cstdio>
 
 #include <gtest/gtest.h>
 
@@ -91,17 +92,20 @@ TEST(JointSmoother, CovarianceMatchesTheScatterOfTheEstimates) {
   spec.joints = {0};
   std::vector<double> estimates;
   double reported = 0.0;
-  for (unsigned seed = 1; seed <= 8; ++seed) {
+  const int seeds = 6;
+  for (unsigned seed = 1; seed <= seeds; ++seed) {
     spec.seed = seed;
     const auto r = RunJointSmoother(Data(spec), PaperPrior());
     const auto at = QueryParametersAtDepth(r.parameters, 0.15).joints[0];
     estimates.push_back(at.compliance_rad_per_nm);
-    reported += at.compliance_sd / 8.0;
+    reported += at.compliance_sd / seeds;
   }
   double mean = 0.0, var = 0.0;
-  for (double e : estimates) mean += e / 8.0;
-  for (double e : estimates) var += (e - mean) * (e - mean) / 7.0;
-  // Eight seeds pin a sd to about ±25 % (χ²₇): accept a factor 2 either way.
+  for (double e : estimates) mean += e / seeds;
+  for (double e : estimates) var += (e - mean) * (e - mean) / (seeds - 1);
+  std::printf("K1(0.15): reported sd %.3g, scatter over %d seeds %.3g\n", reported, seeds,
+              std::sqrt(var));
+  // Six seeds pin a sd to about ±30 % (χ²₅): accept a factor 2 either way.
   EXPECT_GT(reported, 0.5 * std::sqrt(var));
   EXPECT_LT(reported, 2.0 * std::sqrt(var));
 }

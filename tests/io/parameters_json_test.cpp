@@ -58,6 +58,10 @@ void ExpectEqual(const models::ModelParameters& a, const models::ModelParameters
     EXPECT_EQ(x.depth_min_m, y.depth_min_m);
     EXPECT_EQ(x.depth_max_m, y.depth_max_m);
     EXPECT_EQ(x.sources, y.sources);
+    EXPECT_EQ(x.bias_form, y.bias_form);
+    EXPECT_EQ(x.bias_fourier.coefficients, y.bias_fourier.coefficients);
+    EXPECT_EQ(x.bias_fourier.depth_slope_nm_per_m, y.bias_fourier.depth_slope_nm_per_m);
+    EXPECT_EQ(x.bias_fourier.reference_depth_m, y.bias_fourier.reference_depth_m);
   }
   ASSERT_EQ(a.covariance.has_value(), b.covariance.has_value());
   if (a.covariance) {
@@ -116,6 +120,34 @@ TEST(ParametersJson, RoundTripIsIdentical) {
   EXPECT_EQ(ReadText(directory.File("again.json")), ReadText(path));
   // Written in the documented key order, not alphabetically.
   EXPECT_LT(ReadText(path).find("\"format\""), ReadText(path).find("\"description\""));
+}
+
+TEST(ParametersJson, BeamSeriesLawAndFourierBiasRoundTrip) {
+  TempDirectory directory;
+  models::ModelParameters p = ReadParameters(kPaperPath);
+  p.joints[0].compliance = {ComplianceForm::kBeamSeries, {{0.031, 0.0043, 0.0, 0.025}}};
+  p.joints[1].bias_form = models::BiasForm::kFourier;
+  p.joints[1].bias_fourier = {{0.03, -0.01, 0.12, 0.027, 0.0001}, -0.2405, 0.155};
+  p.joints[1].bias_torque = {};  // a Fourier bias has no table
+  const std::string path = directory.File("identified.json");
+  WriteParameters(path, p);
+  const std::string text = ReadText(path);
+  EXPECT_NE(text.find("\"form\": \"beam_series\""), std::string::npos) << text;
+  EXPECT_NE(text.find("\"structure_compliance_rad_per_n\": 0.0043"), std::string::npos) << text;
+  EXPECT_NE(text.find("\"form\": \"fourier\""), std::string::npos) << text;
+  ExpectEqual(p, ReadParameters(path));
+}
+
+TEST(ParametersJson, BeamSeriesErrorsNameTheField) {
+  const std::string beam =
+      "\"form\": \"beam_series\",\n      \"joint_compliance_rad_per_nm\": 0.03,\n"
+      "      \"structure_compliance_rad_per_n\": -0.004,\n      \"shaft_flexibility_per_nm2\": 0,\n"
+      "      \"cannula_length_m\": 0.025";
+  const std::string text =
+      PaperWith("\"form\": \"inverse_cubic\",\n      \"coefficients\": [639.16, -432.35, 136.32, 3.12]", beam);
+  EXPECT_EQ(ErrorOf(text),
+            "p.json:11:5: joint1: compliance beam_series terms must be finite and >= 0 (each is a "
+            "compliance or a length) \u2014 correct the value" + kSeeDocs);
 }
 
 TEST(ParametersJson, DeadzoneWidthDefaultsToTauMin) {

@@ -1,5 +1,7 @@
 #include "pliant/models/parameters.h"
 
+#include <cmath>
+
 #include <gtest/gtest.h>
 
 #include "paper_parameters.h"
@@ -69,6 +71,42 @@ TEST(Parameters, RejectsMalformedTablesAndRanges) {
   p = testing::PaperParameters();
   p.joints[0].deadzone_width_nm = 0.0;
   EXPECT_EQ(ValidateParameters(p), "joint1: deadzone_width_nm must be in (0, 10) N·m");
+}
+
+TEST(Parameters, BeamSeriesAddsJointStructureAndShaftCompliance) {
+  ModelParameters p = testing::PaperParameters();
+  p.joints[0].compliance = {ComplianceForm::kBeamSeries, {{0.03, 0.004, 0.8, 0.025}}};
+  // Beyond the cannula the shaft is a cantilever: F·l³/(3EI) at the tip, seen
+  // from the RCM as (F·l³/(3EI))/L with F = tau/L.
+  const double L = 0.2, l = 0.2 - 0.025;
+  EXPECT_NEAR(ComplianceAt(p.joints[0], L), 0.03 + 0.004 / L + 0.8 * l * l * l / (3 * L * L), 1e-15);
+  p.joints[0].depth_min_m = 0.02;  // inside the cannula: no shaft term
+  EXPECT_NEAR(ComplianceAt(p.joints[0], 0.02), 0.03 + 0.004 / 0.02, 1e-15);
+  EXPECT_EQ(ValidateParameters(p), "");
+}
+
+TEST(Parameters, BeamSeriesMustBeNonNegativeAndSomewherePositive) {
+  ModelParameters p = testing::PaperParameters();
+  p.joints[1].compliance = {ComplianceForm::kBeamSeries, {{0.03, -0.001, 0.8, 0.025}}};
+  EXPECT_EQ(ValidateParameters(p).rfind("joint2: compliance beam_series terms must be finite and >= 0", 0), 0u);
+  p.joints[1].compliance = {ComplianceForm::kBeamSeries, {{0.0, 0.0, 0.8, 0.095}}};
+  EXPECT_EQ(ValidateParameters(p).rfind("joint2: the compliance beam_series law is zero somewhere", 0), 0u);
+  p.joints[1].compliance.cubic.coefficients[3] = 0.025;  // the shaft alone, beyond the cannula
+  EXPECT_EQ(ValidateParameters(p), "");
+}
+
+TEST(Parameters, FourierBiasIsEvaluatedWithItsDepthTerm) {
+  JointParameters joint = testing::PaperParameters().joints[1];
+  joint.bias_form = BiasForm::kFourier;
+  joint.bias_fourier = {{0.03, 0.01, 0.12}, -0.2419, 0.155};
+  EXPECT_NEAR(BiasTorqueAt(joint, 0.3, 0.2),
+              0.03 + 0.01 * std::cos(0.3) + 0.12 * std::sin(0.3) - 0.2419 * 0.045, 1e-15);
+  ModelParameters p = testing::PaperParameters();
+  p.joints[1] = joint;
+  EXPECT_EQ(ValidateParameters(p), "");
+  p.joints[1].bias_fourier.coefficients = {0.1, 0.2};
+  EXPECT_EQ(ValidateParameters(p),
+            "joint2: bias_torque coefficients must be a0, a1, b1, … (an odd number, at least one)");
 }
 
 }  // namespace

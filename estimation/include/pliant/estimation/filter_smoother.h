@@ -9,7 +9,7 @@
 //   xˢₖ   = x̂ₖ + Cₖ (xˢₖ₊₁ − x⁻ₖ₊₁)
 //   Pˢₖ   = P̂ₖ + Cₖ (Pˢₖ₊₁ − P⁻ₖ₊₁) Cₖᵀ
 //
-// Memory: about 200 bytes per sample per joint (900,000 samples: 0.4 GB).
+// Memory: about 540 bytes per sample (900,000 samples: 0.5 GB).
 // Not real-time: this is for offline tools (`pliant filter --smooth`).
 
 #include <cstddef>

@@ -46,7 +46,7 @@ struct JointSmootherOptions {
   /// one held-tip sample: a sharper take-up cannot be seen through the noise,
   /// and a hard contact would drive w to 0, where the smooth dead zone becomes
   /// a step that Levenberg–Marquardt crawls along (docs/identification.md).
-  double deadzone_resolution_sd = 8.0;
+  double deadzone_resolution_sd = 4.0;
   /// false (default): w is held at that floor — fast and, for a hard contact,
   /// where the estimate ends anyway; true: w is estimated above the floor
   /// (2–5 times slower; its σ is then reported).
