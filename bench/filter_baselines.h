@@ -40,13 +40,15 @@ class EkfModel {
   }
 
   template <typename T>
-  void Process(const T* x, bool tip_fixed, const Eigen::Vector2d& increment, T* next) const {
+  void Process(const T* x, bool tip_fixed, const Eigen::Vector2d& increment, double dt,
+               T* next) {
+    dt_ = dt;
     for (int j = 0; j < 2; ++j) {
       const T* xj = x + 4 * j;
       T* nj = next + 4 * j;
       nj[0] = xj[0] + (tip_fixed ? 0.0 : increment[j]);
       nj[1] = xj[1];
-      nj[2] = models::BacklashHysteresisStep(xj[2], xj[1], delta_[j], width_[j]);
+      nj[2] = models::BacklashHysteresisStep(xj[2], xj[1], delta_[j], width_[j], tip_fixed ? 0.0 : Relax(j, increment[j]));
       nj[3] = xj[3];
     }
   }
@@ -63,16 +65,24 @@ class EkfModel {
     }
   }
 
+  double dt_ = 0.0;
+  double Relax(int, double increment) const {
+    return estimation::BacklashRelax(options_, dt_, increment);
+  }
+
   Eigen::Matrix<double, 8, 1> ProcessNoise(const Eigen::Matrix<double, 8, 1>& x, bool tip_fixed,
-                                           double dt) const {
+                                           const Eigen::Vector2d& increment, double dt) const {
     const auto& o = options_;
     Eigen::Matrix<double, 8, 1> q;
     for (int j = 0; j < 2; ++j) {
       const double sat = models::SmoothSaturation(x[4 * j + 1] / width_[j]);
       q[4 * j] = tip_fixed ? 0.0 : o.free_tip_rate_rad * o.free_tip_rate_rad * dt;
       q[4 * j + 1] = o.external_torque_rate_nm * o.external_torque_rate_nm * dt;
-      q[4 * j + 2] = ((1.0 - sat * sat) * o.backlash_rate_rad * o.backlash_rate_rad +
-                      o.backlash_pinned_rate_rad * o.backlash_pinned_rate_rad) * dt;
+      const double relax = tip_fixed ? 0.0 : Relax(j, increment[j]);
+      const double unloaded = tip_fixed ? o.backlash_rate_rad * o.backlash_rate_rad * dt
+                                        : relax * (2.0 - relax) * delta_[j] * delta_[j] / 3.0;
+      q[4 * j + 2] = (1.0 - sat * sat) * unloaded +
+                     o.backlash_pinned_rate_rad * o.backlash_pinned_rate_rad * dt;
       q[4 * j + 3] = o.compliance_scale_rate * o.compliance_scale_rate * dt;
     }
     return q;
@@ -163,13 +173,13 @@ class DenseEkf {
     last_encoder_ = s.encoder_rad;
     Jet8 x[8], next[8];
     for (int i = 0; i < 8; ++i) x[i] = Jet8(x_[i], i);
-    model_.Process(x, s.tip_fixed, increment, next);
+    model_.Process(x, s.tip_fixed, increment, dt, next);
     Matrix f(8, 8);
     for (int i = 0; i < 8; ++i) {
       x_[i] = next[i].a;
       f.row(i) = next[i].v.transpose();
     }
-    Eigen::Matrix<double, 8, 1> q = model_.ProcessNoise(x_, s.tip_fixed, dt);
+    Eigen::Matrix<double, 8, 1> q = model_.ProcessNoise(x_, s.tip_fixed, increment, dt);
     p_ = (f * p_ * f.transpose()).eval();
     for (int j = 0; j < 2; ++j) {
       const int b = 4 * j + 2;

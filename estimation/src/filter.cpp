@@ -28,6 +28,10 @@ enum Channel { kEncoderChannel = 0, kEffortChannel = 1, kReferenceChannel = 2 };
 constexpr int kMaxScalarsPerStep = 6;   // 2 encoders, 2 efforts, 2 references
 constexpr double kMaxJointSpeed = 5.0;  // rad/s: a larger encoder increment is not motion
 constexpr double kMinScale = 0.05, kMaxScale = 20.0;
+// A held tip cannot change its insertion: a larger depth change between two
+// tip-fixed samples means it was released and held again elsewhere (a log of
+// hold means, which skips the transit between clamps).
+constexpr double kMaxHeldDepthChange = 2e-4;  // m
 constexpr int kExactQuantileDof = 1000;  // Wilson–Hilferty beyond (relative error < 1e-5)
 
 struct StepTally {
@@ -65,6 +69,15 @@ bool IsPositiveDefinite(const Eigen::Matrix4d& p) {
 
 }  // namespace
 
+// The fraction of its wall an unloaded shaft forgets in one step: with time
+// constant T while the joint moves (an encoder increment of 3 counts or more
+// per step counts fully, less in proportion), nothing while it rests.
+double BacklashRelax(const FilterOptions& o, double dt, double encoder_increment) {
+  const double count = 3.4641016151377544 * o.encoder_noise_rad;  // σ_enc = count/√12
+  const double moving = std::min(1.0, std::abs(encoder_increment) / (3.0 * count));
+  return -std::expm1(-dt / o.backlash_relax_time_s) * moving;
+}
+
 struct ComplianceFilter::Impl {
   Impl(const models::ModelParameters& p, const FilterOptions& o);
 
@@ -96,6 +109,7 @@ struct ComplianceFilter::Impl {
   bool initialised = false;
   double last_time = 0.0;
   double depth = 0.15;
+  bool last_tip_fixed = false;
   Eigen::Vector2d last_encoder{0.0, 0.0};
   bool implausible_jump[2] = {false, false};  // encoder moved faster than any joint can
   int window_position = 0;
@@ -149,6 +163,7 @@ ComplianceFilter::Impl::Impl(const models::ModelParameters& p, const FilterOptio
 
 void ComplianceFilter::Impl::Reset() {
   initialised = false;
+  last_tip_fixed = false;
   for (int j = 0; j < 2; ++j) {
     joint[j].mean << 0.0, 0.0, 0.0, 1.0;
     joint[j].covariance = PriorCovariance(options, delta[j]);
@@ -186,13 +201,21 @@ void ComplianceFilter::Impl::Initialise(const FilterSample& sample, double depth
 void ComplianceFilter::Impl::Predict(int j, double dt, bool tip_fixed, double encoder_increment) {
   FilterJointState& s = joint[j];
   FilterTransition& t = transition[j];
+  const auto& o = options;
+  // The fraction of its wall an unloaded shaft forgets as the arm moves by
+  // the encoder increment: nothing holds an unloaded shaft on a wall, but it
+  // only leaves it when the arm moves (a joint at rest keeps its offset).
+  // Held tip: the encoders see b, and an arm moving against a held tip loads
+  // the shaft toward a wall rather than freeing it, so b keeps its memory.
+  const double relax = tip_fixed ? 0.0 : BacklashRelax(o, dt, encoder_increment);
   const StateJet tau(s.mean[kTorque], kTorque);
   const StateJet b(s.mean[kBacklash], kBacklash);
-  const StateJet next = models::BacklashHysteresisStep(b, tau, delta[j], width[j]);
+  const StateJet next = models::BacklashHysteresisStep(b, tau, delta[j], width[j], relax);
   const double fbt = next.v[kTorque];
   const double fbb = next.v[kBacklash];
   // How firmly the load holds the shaft on a wall: S² = 1 beyond the width,
-  // 0 at no load. A held shaft diffuses; a loaded one is pinned.
+  // 0 at no load. An unloaded shaft relaxes to the uniform prior; a loaded one
+  // is pinned.
   const double saturation = models::SmoothSaturation(s.mean[kTorque] / width[j]);
   const double hold = 1.0 - saturation * saturation;
 
@@ -206,14 +229,19 @@ void ComplianceFilter::Impl::Predict(int j, double dt, bool tip_fixed, double en
   P.row(kBacklash) = row.transpose();
   P(kBacklash, kBacklash) = pbb;
 
-  const auto& o = options;
   Eigen::Vector4d q;
   q[kTip] = tip_fixed ? 0.0 : o.free_tip_rate_rad * o.free_tip_rate_rad * dt;
   q[kTorque] = o.external_torque_rate_nm * o.external_torque_rate_nm * dt;
-  const double diffusion = (hold * o.backlash_rate_rad * o.backlash_rate_rad +
-                            o.backlash_pinned_rate_rad * o.backlash_pinned_rate_rad) * dt;
+  const double prior_variance = delta[j] * delta[j] / 3.0;
+  // Unloaded, b diffuses: held tip, at σ_b (the arm moves it across the
+  // clearance, the encoders follow); free tip, back to the uniform prior as it
+  // forgets its wall (the stationary variance of b+ = (1 − r)·b + w is δ²/3).
+  const double unloaded = tip_fixed ? o.backlash_rate_rad * o.backlash_rate_rad * dt
+                                    : relax * (2.0 - relax) * prior_variance;
+  const double diffusion =
+      hold * unloaded + o.backlash_pinned_rate_rad * o.backlash_pinned_rate_rad * dt;
   // b lives in ±δ: its variance never needs to exceed the uniform's δ²/3.
-  q[kBacklash] = std::min(diffusion, std::max(0.0, delta[j] * delta[j] / 3.0 - pbb));
+  q[kBacklash] = std::min(diffusion, std::max(0.0, prior_variance - pbb));
   q[kScale] = o.compliance_scale_rate * o.compliance_scale_rate * dt;
   P.diagonal() += q;
 
@@ -333,6 +361,7 @@ void ComplianceFilter::Impl::UpdateWindow(StepTally* tally) {
 
 FilterEstimate ComplianceFilter::Impl::Step(const FilterSample& sample) {
   StepTally tally;
+  const double previous_depth = depth;
   if (std::isfinite(sample.insertion_depth_m)) {
     depth = sample.insertion_depth_m;
   } else {
@@ -346,6 +375,8 @@ FilterEstimate ComplianceFilter::Impl::Step(const FilterSample& sample) {
     Initialise(sample, depth);
     last_time = sample.time_s;
   } else {
+    const bool released =
+        sample.tip_fixed && last_tip_fixed && std::abs(depth - previous_depth) > kMaxHeldDepthChange;
     double dt = sample.time_s - last_time;
     if (!(dt > 0.0)) dt = options.sample_period_s;
     dt = std::min(dt, 1.0);
@@ -355,11 +386,21 @@ FilterEstimate ComplianceFilter::Impl::Step(const FilterSample& sample) {
       implausible_jump[j] = std::abs(increment) > kMaxJointSpeed * dt;
       if (!(std::abs(increment) <= kMaxJointSpeed * dt)) increment = 0.0;
       Predict(j, dt, sample.tip_fixed, increment);
+      if (released) {
+        // Held again elsewhere, after a transit the log does not show: the tip
+        // and the load start again from their priors.
+        const Eigen::Matrix4d prior = PriorCovariance(options, delta[j]);
+        joint[j].covariance(kTip, kTip) += prior(kTip, kTip);
+        joint[j].covariance(kTorque, kTorque) += prior(kTorque, kTorque);
+        transition[j].process_noise[kTip] += prior(kTip, kTip);
+        transition[j].process_noise[kTorque] += prior(kTorque, kTorque);
+      }
     }
   }
   for (int j = 0; j < 2; ++j) {
     if (std::isfinite(sample.encoder_rad[j])) last_encoder[j] = sample.encoder_rad[j];
   }
+  last_tip_fixed = sample.tip_fixed;
 
   // Efforts: tau_meas − tau0(q_enc, L) = tau (tau0 is evaluated at the
   // measured angle, an input, so its row is the unit vector of tau).

@@ -38,6 +38,7 @@ bool FilterOptions::IsValid(std::string* error) const {
       {"reference_noise_rad", reference_noise_rad, "rad"},
       {"external_torque_rate_nm", external_torque_rate_nm, "N·m/√s"},
       {"backlash_rate_rad", backlash_rate_rad, "rad/√s"},
+      {"backlash_relax_time_s", backlash_relax_time_s, "s"},
       {"backlash_pinned_rate_rad", backlash_pinned_rate_rad, "rad/√s"},
       {"free_tip_rate_rad", free_tip_rate_rad, "rad/√s"},
       {"compliance_scale_sd", compliance_scale_sd, "(a fraction of K)"},

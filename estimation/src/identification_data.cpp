@@ -92,6 +92,7 @@ void AppendSamples(const io::Log& log, const std::string& name,
     s.effort_nm << log.Value(r, c.tau1), log.Value(r, c.tau2);
     s.tip_fixed = fixed > 0.5;
     s.segment = data->segments - 1;
+    s.log = int(data->logs.size()) - 1;
     if (hold.rows > 0 && (!options.average_holds ||
                           (s.angle_rad - hold.first_angle_rad).cwiseAbs().maxCoeff() >
                               options.hold_tolerance_rad ||

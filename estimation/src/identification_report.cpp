@@ -141,7 +141,7 @@ nlohmann::json IdentificationJson(const IdentificationResult& r, const Identific
   return out;
 }
 
-nlohmann::json DepthJson(const ParametersAtDepth& at) {
+nlohmann::ordered_json DepthJson(const ParametersAtDepth& at) {
   nlohmann::ordered_json out;
   out["depth_m"] = at.insertion_depth_m;
   for (int j = 0; j < 2; ++j) {
@@ -158,7 +158,7 @@ nlohmann::json DepthJson(const ParametersAtDepth& at) {
     out["inverse_K" + n + "_sd"] = at.joints[j].inverse_compliance_sd;
   }
   out["depth_clamped"] = at.joints[0].depth_clamped || at.joints[1].depth_clamped;
-  return nlohmann::json::parse(out.dump());
+  return out;
 }
 
 std::string DepthTable(const ParametersAtDepth& at) {

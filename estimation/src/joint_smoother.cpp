@@ -39,7 +39,8 @@ ceres::CostFunction* Prior(const double* mean, const double* sd, int n) {
 class SmootherProblem {
  public:
   SmootherProblem(const IdentificationData& data, const SmootherPrior& prior,
-                  const JointSmootherOptions& options, const Noise& noise, SmootherState* state)
+                  const JointSmootherOptions& options, const Noise& noise,
+                  const std::array<double, 2>& width_floor_nm, SmootherState* state)
       : state_(state), huber_(options.robust_loss_sd) {
     ceres::Problem::Options problem_options;
     problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
@@ -67,8 +68,7 @@ class SmootherProblem {
       // The take-up of the clearance cannot be resolved below the effort noise
       // of one sample; a hard contact would otherwise drive w to 0, where the
       // dead zone turns into a step no derivative can follow.
-      const double floor = std::log(options.deadzone_resolution_sd * noise.effort_fixed_nm[j] /
-                                    std::sqrt(TypicalRows(data)));
+      const double floor = std::log(width_floor_nm[j]);
       if (options.estimate_deadzone_width) {
         state->log_width[j] = std::max(state->log_width[j], floor);
         problem_->SetParameterLowerBound(&state->log_width[j], 0, floor);
@@ -116,8 +116,9 @@ class SmootherProblem {
 
   ceres::Solver::Summary Solve(const JointSmootherOptions& options) {
     ceres::Solver::Options solver;
-    const int global = ordering_->NumElements() - ordering_->GroupSize(0);
-    solver.linear_solver_type = global < 400 ? ceres::DENSE_SCHUR : ceres::SPARSE_SCHUR;
+    // Reduced system: tips (block diagonal) bordered by the globals, an arrow
+    // that sparse Cholesky factors in time linear in the number of segments.
+    solver.linear_solver_type = ceres::SPARSE_SCHUR;
     if (ordering_->GroupSize(0) > 0) solver.linear_solver_ordering = ordering_;
     else solver.linear_solver_type = ceres::DENSE_QR;
     solver.max_num_iterations = options.max_iterations;
@@ -133,7 +134,8 @@ class SmootherProblem {
 
   // Covariance of law1, law2, delta1, delta2, log w1, log w2, bias1, bias2 in
   // physical units; false when Ceres finds the problem singular.
-  bool GlobalCovariance(const JointSmootherOptions& options, Eigen::MatrixXd* out) {
+  bool GlobalCovariance(const JointSmootherOptions& options, double variance_factor,
+                        Eigen::MatrixXd* out) {
     std::vector<const double*> blocks;
     std::vector<double> scale;
     for (int j = 0; j < 2; ++j) {
@@ -159,7 +161,7 @@ class SmootherProblem {
       return false;
     }
     const Eigen::Map<const Eigen::VectorXd> s(scale.data(), n);
-    *out = s.asDiagonal() * Eigen::MatrixXd(c) * s.asDiagonal();
+    *out = variance_factor * (s.asDiagonal() * Eigen::MatrixXd(c) * s.asDiagonal());
     return true;
   }
 
@@ -233,12 +235,19 @@ IdentificationResult RunJointSmoother(const IdentificationData& data,
     }
 
   }
+  // The dead-zone floor, fixed before the first pass so that the second starts
+  // where the first ended (a new w would move every latent in the clearance).
+  std::array<double, 2> width_floor_nm;
+  for (int j = 0; j < 2; ++j) {
+    width_floor_nm[j] =
+        options.deadzone_resolution_sd * noise.effort_fixed_nm[j] / std::sqrt(TypicalRows(data));
+  }
   IdentificationResult result;
   result.method = "smoother";
   result.depth_estimates = paper.depth_estimates;
   // Two passes: the second weighs the samples by the noise the first found.
   for (int pass = 0; pass < 2; ++pass) {
-    SmootherProblem problem(data, smoother_prior, options, noise, &state);
+    SmootherProblem problem(data, smoother_prior, options, noise, width_floor_nm, &state);
     const ceres::Solver::Summary summary = problem.Solve(options);
     result.report += "pass " + std::to_string(pass + 1) + ": " + summary.BriefReport() +
                      " (" + std::to_string(summary.total_time_in_seconds) + " s)\n";
@@ -251,8 +260,13 @@ IdentificationResult RunJointSmoother(const IdentificationData& data,
       result.report += note;
       continue;
     }
+    // The variance factor of the robust fit, 2·cost/(m − n): above 1 when the
+    // model misses something the noise alone does not explain; never below 1.
+    const double dof = double(summary.num_residuals_reduced - summary.num_effective_parameters_reduced);
+    const double variance_factor = dof > 0.0 ? std::max(1.0, 2.0 * summary.final_cost / dof) : 1.0;
+    result.report += "  variance factor " + std::to_string(variance_factor) + "\n";
     Eigen::MatrixXd covariance;
-    const bool ok = problem.GlobalCovariance(options, &covariance);
+    const bool ok = problem.GlobalCovariance(options, variance_factor, &covariance);
     detail::FillResult(data, prior, smoother_prior, options, &state, ok ? &covariance : nullptr,
                        &result);
   }

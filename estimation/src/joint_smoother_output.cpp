@@ -13,15 +13,17 @@
 namespace pliant::estimation::detail {
 namespace {
 
-// The classical variance factor: RMS of the whitened residuals. Not a median:
-// model error (a dead zone a little softer than a hard contact, a sample taken
-// as the joint settles) is part of what the reported σ must cover, and a
-// robust estimate would hide it (it gave 67 % instead of 95 % coverage).
-double NoiseScale(const std::vector<double>& squares) {
+// For a Gaussian residual of sd s, median(r²) = 0.4549·s² (the χ²₁ median):
+// a noise level that a few bad samples (a leg the protocol cut short, a row
+// taken as the joint settled) do not inflate. Model error in the bulk of the
+// samples is charged to the covariance afterwards (the variance factor in
+// joint_smoother.cpp).
+constexpr double kChiSquare1Median = 0.45493642311957;
+
+double NoiseScale(std::vector<double> squares) {
   if (squares.size() < 10) return 1.0;
-  double sum = 0.0;
-  for (double q : squares) sum += q;
-  return std::sqrt(sum / double(squares.size()));
+  std::nth_element(squares.begin(), squares.begin() + long(squares.size() / 2), squares.end());
+  return std::sqrt(squares[squares.size() / 2] / kChiSquare1Median);
 }
 
 struct Residuals {
@@ -77,7 +79,9 @@ SmootherNoise RescaledNoise(const IdentificationData& data, const SmootherState&
     const double fixed = NoiseScale(r.fixed_squares[j]);
     out.effort_free_nm[j] *= free;
     out.effort_fixed_nm[j] *= fixed;
-    out.angle_fixed_rad[j] *= fixed;
+    // Never below the encoder's own resolution: a tinier angle sd only makes
+    // the problem stiff (the effort noise, times K, dominates anyway).
+    out.angle_fixed_rad[j] = std::max(options.encoder_noise_rad, out.angle_fixed_rad[j] * fixed);
     *note += Format("  joint %.0f noise per row: effort %.3g N·m (free tip), ", j + 1.0,
                     out.effort_free_nm[j]) +
              Format("%.3g N·m and %.3g rad (tip held)\n", out.effort_fixed_nm[j],

@@ -120,14 +120,15 @@ IdentificationResult RunPaperProcedure(const IdentificationData& data,
   std::vector<std::string> names;
   std::vector<std::pair<std::vector<int>, Eigen::MatrixXd>> blocks;
   for (int j = 0; j < 2; ++j) {
-    // Per depth: the two branches' (position, effort) points.
-    std::map<long, std::array<std::vector<double>, 4>> depths;  // q+, tau+, q−, tau−
-    std::map<long, std::pair<double, int>> reference;           // Σ tau_ref, count
+    // Per log and depth (one clamp): the two branches' (position, effort)
+    // points. Two logs are two clamps: their lines need not coincide.
+    std::map<std::pair<int, long>, std::array<std::vector<double>, 4>> depths;  // q+, tau+, q−, tau−
+    std::map<std::pair<int, long>, std::pair<double, int>> reference;  // Σ tau_ref, count
     for (std::size_t i = 0; i < data.samples.size(); ++i) {
       const int side = branches.side[j][i];
       if (side == 0) continue;
       const auto& s = data.samples[i];
-      const long key = detail::DepthKey(s.insertion_depth_m, options.depth_resolution_m);
+      const std::pair<int, long> key{s.log, detail::DepthKey(s.insertion_depth_m, options.depth_resolution_m)};
       auto& d = depths[key];
       d[side > 0 ? 0 : 2].push_back(s.angle_rad[j]);
       d[side > 0 ? 1 : 3].push_back(s.effort_nm[j]);
@@ -146,7 +147,7 @@ IdentificationResult RunPaperProcedure(const IdentificationData& data,
       const auto [q_minus, var_minus] = Crossing(minus, tau_ref);
       DepthEstimate e;
       e.joint = j;
-      e.insertion_depth_m = double(key) * options.depth_resolution_m;
+      e.insertion_depth_m = double(key.second) * options.depth_resolution_m;
       e.inverse_compliance_nm_per_rad = 0.5 * (plus.b + minus.b);
       e.inverse_compliance_sd = 0.5 * std::sqrt(plus.covariance(1, 1) + minus.covariance(1, 1));
       e.backlash_rad = 0.5 * (q_plus - q_minus);  // δ is half the gap (equation 1)

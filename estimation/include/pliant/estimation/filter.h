@@ -14,8 +14,10 @@
 //   q_tip+ = q_tip                           while the tip is fixed (no noise)
 //   q_tip+ = q_tip + (q_enc,k − q_enc,k−1)    otherwise, + noise σ_free²·dt
 //   tau+   = tau + noise σ_τ̇²·dt            (random walk)
-//   b+     = BacklashHysteresisStep(b, tau)  (models/effects/backlash_hysteresis.h)
-//            + noise (σ_b²·(1 − S(tau/w)²) + σ_pinned²)·dt, variance ≤ δ²/3
+//   b+     = BacklashHysteresisStep(b, tau, r)  (models/effects/backlash_hysteresis.h;
+//            r = 1 − e^(−dt/T) while the joint moves, 0 at rest: BacklashRelax)
+//            + noise ((1 − S(tau/w)²)·u + σ_pinned²·dt), variance ≤ δ²/3, with
+//            u = σ_b²·dt (tip held, r = 0) or (1 − (1 − r)²)·δ²/3 (tip free)
 //   s+     = s + noise σ_ṡ²·dt
 // Measurements:
 //   q_enc_j  = q_tip_j + b_j + s_j·K_j(L)·tau_j   (ComplianceEffect)   σ_enc
@@ -52,7 +54,12 @@ struct FilterOptions {
   double reference_noise_rad = 5e-5;   ///< q1_ref, q2_ref (an optical tracker)
   // Process noise (standard deviations per √s).
   double external_torque_rate_nm = 0.1;   ///< σ_τ̇, N·m/√s
-  double backlash_rate_rad = 0.05;        ///< σ_b at no load, rad/√s
+  double backlash_rate_rad = 0.05;        ///< σ_b at no load with the tip held, rad/√s
+  /// Time T over which an unloaded shaft forgets its wall while the joint
+  /// moves: b relaxes to the middle of the clearance, b+ = b·e^(−dt/T), and its
+  /// variance to δ²/3 (BacklashRelax); a joint at rest keeps its offset. Free
+  /// tip only: with the tip held the encoders see b.
+  double backlash_relax_time_s = 0.05;
   double backlash_pinned_rate_rad = 2e-4; ///< σ_b with the shaft loaded onto a wall, rad/√s
   double compliance_scale_rate = 0.0;     ///< σ_ṡ, 1/√s
   /// σ_free, rad/√s, tip not fixed. Large on purpose: a free tip is wherever
@@ -162,6 +169,10 @@ class ComplianceFilter {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+/// The fraction r of its wall an unloaded shaft forgets in a step of dt with
+/// this encoder increment: 1 − e^(−dt/T), weighted by min(1, |Δq|/3 counts).
+double BacklashRelax(const FilterOptions& options, double dt, double encoder_increment);
 
 /// The output quantities of a joint-block pair, computed the same way for the
 /// filter and the smoother: corrected angles, covariance, tip correction.

@@ -22,6 +22,7 @@ struct IdentificationSample {
   bool tip_fixed = false;  ///< the tip is held (clamp, divot): its angle is a latent constant
   int segment = 0;         ///< 0, 1, … over all logs: a run of rows with one tip state
   int rows = 1;            ///< log rows averaged into this sample
+  int log = 0;             ///< which log (0, 1, …): each log is its own clamp
 };
 
 struct SampleExtractionOptions {

@@ -30,7 +30,7 @@ nlohmann::json IdentificationJson(const IdentificationResult& result,
 
 /// {"depth_m", "K1", "K1_sd", "K2", "K2_sd", "delta1", "delta1_sd", "delta2",
 /// "delta2_sd", "inverse_K1", …, "depth_clamped"} (K in rad/(N·m), δ in rad).
-nlohmann::json DepthJson(const ParametersAtDepth& at);
+nlohmann::ordered_json DepthJson(const ParametersAtDepth& at);
 std::string DepthTable(const ParametersAtDepth& at);
 
 }  // namespace pliant::estimation

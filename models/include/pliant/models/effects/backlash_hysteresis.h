@@ -10,10 +10,15 @@
 //
 //   p  = delta·S(tau/w)                      (S: smooth.h's saturation)
 //   g  = S(tau/w)²                           (how firmly the load holds the shaft)
-//   b+ = b + g·(p − b)
+//   b+ = b + g·(p − b) − (1 − g)·r·b
 //
 // so |tau| >= w puts the shaft exactly on the wall (g = 1, p = ±delta), and at
-// |tau| << w the shaft barely moves (g ≈ (15·tau/8w)²). g is a per-sample
+// |tau| << w the shaft barely moves (g ≈ (15·tau/8w)²). r in [0, 1] is the
+// fraction by which an unloaded shaft forgets its wall in this sample
+// (the filter: r = 1 − exp(−|Δq|/(c·δ)) for an encoder increment Δq; 0: it
+// never does): nothing holds an unloaded shaft on a wall, so as the arm moves
+// on, the knowledge of where it sits relaxes to the middle of the clearance (the filter pairs this
+// with process noise that relaxes the variance to the uniform's δ²/3). g is a per-sample
 // fraction: at 1.5 kHz, effort noise of 0.06·w relaxes a free shaft toward
 // the centre with a time constant of about 50 ms; a filter that keeps b
 // gives it process noise in proportion to 1 − g, and a fixed tip lets the
@@ -33,13 +38,15 @@
 namespace pliant::models {
 
 /// The offset b+ (rad) after one sample at external torque tau (N·m), from the
-/// offset b (rad), for backlash delta (rad) and dead-zone width w (N·m, > 0).
+/// offset b (rad), for backlash delta (rad) and dead-zone width w (N·m, > 0);
+/// relax (in [0, 1]) is the fraction an unloaded shaft forgets this sample.
 template <typename T>
 T BacklashHysteresisStep(const T& offset_rad, const T& external_torque_nm, double delta_rad,
-                         double width_nm) {
+                         double width_nm, double relax = 0.0) {
   const T saturation = SmoothSaturation(external_torque_nm / width_nm);
   const T hold = saturation * saturation;
-  return offset_rad + hold * (delta_rad * saturation - offset_rad);
+  return offset_rad + hold * (delta_rad * saturation - offset_rad) -
+         (T(1.0) - hold) * (relax * offset_rad);
 }
 
 /// Catalogue form: the steady state delta_j·S(tau_j/w_j) per joint (rad).
