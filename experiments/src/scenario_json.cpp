@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "pliant/estimation/effect_catalogue.h"
+#include "pliant/io/json_input.h"
 #include "scenario_json_parts.h"
 
 namespace pliant::experiments {
@@ -254,20 +255,12 @@ std::vector<Override> ApplyOverrides(json& doc, const std::vector<std::string>& 
 Scenario ParseScenario(const std::string& text, const std::string& file,
                        const std::vector<std::string>& overrides) {
   using detail::json;
-  json doc;
-  try {
-    doc = json::parse(text);
-  } catch (const json::parse_error& error) {
-    const auto at = io::JsonLocationOfOffset(text, error.byte == 0 ? 0 : error.byte - 1);
-    throw io::InputError(file, at.line, at.column, "not valid JSON",
-                         "fix the syntax near this position");
-  }
+  json doc = io::ParseJsonInput(text, file);
   if (!doc.is_object()) {
     throw io::InputError(file, 1, 1, "a scenario must be a JSON object", "see docs/simulator.md");
   }
   const auto applied = detail::ApplyOverrides(doc, overrides);
   const detail::ScenarioReader r(text, file, applied);
-  r.CheckDuplicates();
   r.Object(doc, "",
            {{"format", true},
             {"version", true},

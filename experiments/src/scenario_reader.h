@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "pliant/io/input_error.h"
+#include "pliant/io/json_input.h"
 #include "pliant/io/json_location.h"
 
 namespace pliant::experiments::detail {
@@ -42,20 +43,9 @@ class ScenarioReader {
     throw io::InputError(file_, at.line, at.column, std::move(problem), std::move(fix));
   }
 
-  void CheckDuplicates() const {
-    const std::string& pointer = map_.DuplicateKey();
-    if (!pointer.empty()) {
-      Fail(pointer, "duplicate key '" + pointer.substr(pointer.rfind('/') + 1) + "'",
-           "keep only one; JSON readers silently use the last");
-    }
-  }
-
   /// "/truth/backlash_rad" -> "truth.backlash_rad", as users think of it.
   static std::string Dotted(const std::string& pointer) {
-    if (pointer.empty()) return "the scenario";
-    std::string out = pointer.substr(1);
-    for (char& c : out) c = c == '/' ? '.' : c;
-    return out;
+    return io::DottedJsonPointer(pointer, "the scenario");
   }
 
   static std::string Child(const std::string& pointer, const std::string& key) {

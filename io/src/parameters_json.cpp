@@ -10,6 +10,7 @@
 
 #include "json_locator.h"
 #include "pliant/io/input_error.h"
+#include "pliant/io/json_input.h"
 
 namespace pliant::io {
 namespace {
@@ -25,12 +26,8 @@ struct Key {
   bool required;
 };
 
-// "/joint1/compliance/form" -> "joint1.compliance.form", as users think of it.
 std::string Dotted(const std::string& pointer) {
-  if (pointer.empty()) return "the top-level object";
-  std::string out = pointer.substr(1);
-  for (char& c : out) c = c == '/' ? '.' : c;
-  return out;
+  return DottedJsonPointer(pointer, "the top-level object");
 }
 
 std::string TypeName(const json& value) { return value.type_name(); }
@@ -42,15 +39,6 @@ class Reader {
   [[noreturn]] void Fail(const std::string& pointer, std::string problem, std::string fix) const {
     const detail::JsonPosition at = locator_.Find(pointer);
     throw InputError(file_, at.line, at.column, std::move(problem), std::move(fix));
-  }
-
-  void CheckDuplicates() const {
-    const std::string& pointer = locator_.duplicate();
-    if (pointer.empty()) return;
-    const std::size_t slash = pointer.rfind('/');
-    Fail(pointer,
-         "duplicate key '" + pointer.substr(slash + 1) + "' in " + Dotted(pointer.substr(0, slash)),
-         "keep only one; JSON readers silently use the last and ignore the others");
   }
 
   // An object with no key outside `keys` and every required one present.
@@ -279,34 +267,7 @@ class Reader {
 
 models::ModelParameters ParseParameters(const std::string& text, const std::string& file) {
   Reader reader(text, file);
-  json document;
-  try {
-    document = json::parse(text);
-  } catch (const json::parse_error& error) {
-    // nlohmann's byte is 1-based: the position of the last character it read.
-    const auto at = detail::PositionOfOffset(text, error.byte == 0 ? 0 : error.byte - 1);
-    std::string message = error.what();
-    const std::size_t colon = message.find(": ", message.find("parse error"));
-    if (colon != std::string::npos) message = message.substr(colon + 2);
-    throw InputError(file, at.line, at.column, "not valid JSON: " + message,
-                     "fix the syntax here; a missing comma, quote or bracket is the usual cause");
-  } catch (const json::out_of_range& error) {
-    // A number too large for a double (found by fuzzing): nlohmann gives no
-    // position, but quotes the literal, which we find in the text.
-    const std::string message = error.what();
-    const std::size_t open = message.find('\'');
-    const std::size_t close = message.rfind('\'');
-    const std::string literal =
-        open < close ? message.substr(open + 1, close - open - 1) : std::string();
-    const std::size_t offset = literal.empty() ? std::string::npos : text.find(literal);
-    const auto at = offset == std::string::npos ? detail::JsonPosition{}
-                                                : detail::PositionOfOffset(text, offset);
-    throw InputError(file, at.line, at.column,
-                     "number " + (literal.empty() ? std::string("value") : literal) +
-                         " does not fit in a double",
-                     "write a number between -1.7e308 and 1.7e308");
-  }
-  reader.CheckDuplicates();
+  const json document = ParseJsonInput(text, file);
   reader.Object(document, "",
                 {{"format", true},
                  {"version", true},

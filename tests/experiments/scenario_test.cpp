@@ -1,5 +1,8 @@
 #include "pliant/experiments/scenario.h"
 
+#include <fstream>
+#include <iterator>
+
 #include <gtest/gtest.h>
 
 #include "pliant/io/input_error.h"
@@ -121,7 +124,23 @@ TEST(Scenario, HiddenEffectsComeFromTheCatalogue) {
 TEST(Scenario, NotJsonPointsAtTheSyntaxError) {
   const auto e = ParseError("{\n  \"format\": \"pliant-scenario\",,\n}");
   EXPECT_EQ(e.line(), 2u);
-  EXPECT_EQ(e.problem(), "not valid JSON");
+  EXPECT_EQ(e.problem().rfind("not valid JSON: syntax error", 0), 0u) << e.problem();
+}
+
+// Fuzzing found a number beyond a double escaping as nlohmann's out_of_range;
+// the scenario reader now shares io::ParseJsonInput with the parameters reader.
+TEST(Scenario, NumberBeyondADoubleAndRepeatedKeysAreInputErrors) {
+  const auto big = ParseError("{\n  \"format\": \"pliant-scenario\",\n  \"version\": 1e999\n}");
+  EXPECT_EQ(big.line(), 3u);
+  EXPECT_EQ(big.problem(), "number 1e999 does not fit in a double");
+  const auto twice = ParseError("{\"format\": \"pliant-scenario\",\n \"format\": \"x\"}");
+  EXPECT_EQ(twice.line(), 2u);
+  EXPECT_EQ(twice.problem(), "duplicate key 'format' in the top-level object");
+  std::ifstream found(std::string(PLIANT_SOURCE_DIR) +
+                      "/tests/fuzz/regressions/scenario/number_overflow.json");
+  const std::string text((std::istreambuf_iterator<char>(found)), std::istreambuf_iterator<char>());
+  ASSERT_FALSE(text.empty());
+  EXPECT_NE(ParseError(text).problem().find("does not fit in a double"), std::string::npos);
 }
 
 }  // namespace
