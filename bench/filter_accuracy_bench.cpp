@@ -11,7 +11,7 @@
 // "speed S rad/s" with S the slow speed), the largest |Δq_corr − Δq_enc|
 // between consecutive samples of one push, in encoder counts (7.7 µrad).
 // --free drops the tip_fixed column (the filter is not told the tip is held).
-// Not a Google Benchmark: an accuracy study, run by hand (docs/validation-filter.md).
+// Not a Google Benchmark: an accuracy study, run by hand (docs/validation.md).
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>

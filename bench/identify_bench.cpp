@@ -6,7 +6,7 @@
 //   PLIANT_IDENTIFY_LOGS=/tmp/pliant_identify build/bench/identify_bench \
 //       --benchmark_counters_tabular=true
 //
-// Results are recorded in docs/validation-identify.md.
+// Results are recorded in docs/validation.md.
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -74,7 +74,7 @@ BENCHMARK(BM_IdentifyPaperProtocol)
 
 // Worst |K/K_true − 1| over 0.09–0.22 m and |δ/δ_true − 1| of one joint. The
 // law is evaluated without the file's clamp: when the simulator's sweep at an
-// end depth lacks a leg (see docs/validation-identify.md), the range shrinks.
+// end depth lacks a leg (see docs/validation.md), the range shrinks.
 std::pair<double, double> Errors(const models::ModelParameters& found, int joint) {
   const auto truth = estimation::PaperPrior();
   const auto& law = found.joints[joint].compliance;

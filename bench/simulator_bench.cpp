@@ -1,6 +1,6 @@
 // Real-time factor of the simulator (simulated seconds per wall second, one
 // thread) on each of the paper's scenarios, run in full as the scenario files
-// describe them. Recorded in docs/validation-simulator.md.
+// describe them. Recorded in docs/validation.md.
 //   build/bench/simulator_bench --benchmark_counters_tabular=true
 #include <benchmark/benchmark.h>
 

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets (clang, with ASan+UBSan) and runs each from its
 # seed corpus in tests/fuzz/corpus/<reader>/.
-#   scripts/fuzz.sh                 30 s each (what CI runs)
-#   scripts/fuzz.sh -runs=10000000  a fixed number of executions each
+#   scripts/fuzz.sh                          30 s each
+#   scripts/fuzz.sh -seed=1 -runs=200000     what CI runs: deterministic, about 20 s each
+#   scripts/fuzz.sh -runs=10000000           the long run reported in docs/validation.md
 # Findings are written to build-fuzz/findings/; add each as a regression test.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -18,7 +19,9 @@ for source in tests/fuzz/*_fuzz.cpp; do
   work=build-fuzz/corpus/$reader
   mkdir -p "$work"
   echo "fuzz: $name ${limit[*]}"
-  build-fuzz/tests/fuzz/"$name" "$work" "tests/fuzz/corpus/$reader" "${limit[@]}" \
+  regressions=()
+  [ -d "tests/fuzz/regressions/$reader" ] && regressions=("tests/fuzz/regressions/$reader")
+  build-fuzz/tests/fuzz/"$name" "$work" "tests/fuzz/corpus/$reader" "${regressions[@]}" "${limit[@]}" \
     -artifact_prefix=build-fuzz/findings/"$name"- -print_final_stats=1 2>&1 |
     grep -E "^(stat::number_of_executed_units|stat::peak_rss_mb|==|SUMMARY|Done)" || true
   if ls build-fuzz/findings/"$name"-* >/dev/null 2>&1; then

@@ -231,19 +231,28 @@ std::vector<Override> ApplyOverrides(json& doc, const std::vector<std::string>& 
       throw io::InputError("--set " + text, 0, 0, "an override must be key=value",
                            "write e.g. --set experiment.depths_m=[0.1,0.2]");
     }
+    // Walk the dotted key through objects only: a number taken as an array
+    // index would let "--set a.99999999999=1" grow an array without bound
+    // (found by fuzzing).
     std::string pointer;
+    json* node = &doc;
     std::stringstream keys(text.substr(0, eq));
-    for (std::string key; std::getline(keys, key, '.');) pointer += "/" + io::JsonPointerToken(key);
+    for (std::string key; std::getline(keys, key, '.');) {
+      if (node->is_null()) *node = json::object();  // a section the file leaves out
+      if (!node->is_object()) {
+        throw io::InputError("--set " + text, 0, 0,
+                             "cannot set " + text.substr(0, eq) + ": " +
+                                 io::DottedJsonPointer(pointer, "the scenario") +
+                                 " is not an object",
+                             "name a key inside an object of the scenario");
+      }
+      pointer += "/" + io::JsonPointerToken(key);
+      node = &(*node)[key];
+    }
     const std::string value_text = text.substr(eq + 1);
     json value = json::parse(value_text, nullptr, false);
     if (value.is_discarded()) value = value_text;
-    try {
-      doc[json::json_pointer(pointer)] = value;
-    } catch (const json::exception& e) {
-      throw io::InputError("--set " + text, 0, 0,
-                           "cannot set " + text.substr(0, eq) + ": " + e.what(),
-                           "name a key inside an object of the scenario");
-    }
+    *node = value;
     applied.push_back({pointer, text});
   }
   return applied;

@@ -257,7 +257,7 @@ TEST(ComplianceFilter, NeesAndCoverageAreConsistentOverAHundredRuns) {
   EXPECT_LT(mean_nees, 2.41);
   // Measured: 97.9 % (joint 1) and 92.3 % (joint 2). The target is 93–97 %;
   // with a fixed tip the EKF's linearisation of s·K·τ makes joint 2 a little
-  // overconfident and joint 1 a little cautious (docs/validation-filter.md).
+  // overconfident and joint 1 a little cautious (docs/validation.md).
   for (int j = 0; j < 2; ++j) {
     const double coverage = double(covered[j]) / double(count);
     EXPECT_GT(coverage, 0.91) << j;

@@ -107,6 +107,12 @@ TEST(Scenario, OverrideErrorsNameTheOverride) {
   EXPECT_EQ(e.line(), 0u);
   const auto f = ParseError(kMinimal, {"no_equals_sign"});
   EXPECT_EQ(f.problem(), "an override must be key=value");
+  // A key below an array or a number would index it (found by fuzzing: an
+  // index of 10^11 grew an array until memory ran out).
+  const auto g = ParseError(kMinimal, {"experiment.depths_m.99999999999=1"});
+  EXPECT_EQ(g.file(), "--set experiment.depths_m.99999999999=1");
+  EXPECT_EQ(g.problem(),
+            "cannot set experiment.depths_m.99999999999: experiment.depths_m is not an object");
 }
 
 TEST(Scenario, HiddenEffectsComeFromTheCatalogue) {
