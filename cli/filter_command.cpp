@@ -3,9 +3,11 @@
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <utility>
 
 #include "commands.h"
 #include "pliant/estimation/filter_log.h"
+#include "pliant/io/input_error.h"
 #include "pliant/io/parameters_json.h"
 
 namespace pliant::cli {
@@ -47,10 +49,33 @@ void PrintSummary(const FilterCommandOptions& o, const estimation::LogFilterSumm
   if (s.smoothed) PrintAccuracy("smoother", s.smoothed_error);
 }
 
+// FilterOptions::IsValid names the C++ field ("FilterOptions::gate_probability = 1.5 must
+// lie in ... — fix"); a user of the command gave an option, so name that and exit 2.
+io::InputError OptionError(const std::string& error) {
+  static const std::pair<const char*, const char*> kOptions[] = {
+      {"effort_noise_nm", "--effort-noise"},    {"encoder_noise_rad", "--encoder-noise"},
+      {"external_torque_rate_nm", "--torque-rate"}, {"compliance_scale_sd", "--compliance-sd"},
+      {"gate_probability", "--gate"},            {"mismatch_window", "--mismatch-window"}};
+  std::string problem = error;
+  const std::string prefix = "FilterOptions::";
+  if (problem.rfind(prefix, 0) == 0) problem.erase(0, prefix.size());
+  std::string option = "filter options";
+  for (const auto& [field, name] : kOptions) {
+    if (problem.rfind(field, 0) == 0) option = name;
+  }
+  std::string fix = "see pliant filter --help";
+  const std::size_t dash = problem.find(" \u2014 ");
+  if (dash != std::string::npos) {
+    fix = problem.substr(dash + std::string(" \u2014 ").size());
+    problem.erase(dash);
+  }
+  return io::InputError(option, 0, 0, problem, fix);
+}
+
 void RunFilter(const FilterCommandOptions& o) {
   const auto parameters = io::ReadParameters(o.params_path);
   std::string error;
-  if (!o.filter.IsValid(&error)) throw std::invalid_argument(error);
+  if (!o.filter.IsValid(&error)) throw OptionError(error);
   const auto summary =
       estimation::FilterLog(o.input_path, o.output_path, parameters, o.filter, o.smooth,
                             "pliant filter, parameters " + o.params_path, {o.skip_bad_rows});

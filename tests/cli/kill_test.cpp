@@ -1,5 +1,6 @@
-// A `pliant correct` killed midway (SIGKILL: no destructor, no cleanup) leaves
-// the old output or none — never a torn file, never a stray temporary.
+// A `pliant correct` or `pliant filter` killed midway (SIGKILL: no destructor,
+// no cleanup) leaves the old output or none — never a torn file, never a stray
+// temporary.
 #include <fcntl.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -33,8 +34,8 @@ void WriteLongLog(const fs::path& path, std::size_t rows) {
   writer.Commit();
 }
 
-// Starts `pliant correct`, lets it run for `delay`, then kills it.
-void CorrectAndKill(const fs::path& dir, std::chrono::milliseconds delay) {
+// Starts `pliant <command>`, lets it run for `delay`, then kills it.
+void RunAndKill(const char* command, const fs::path& dir, std::chrono::milliseconds delay) {
   const std::string params = std::string(PLIANT_SOURCE_DIR) + "/data/paper.json";
   const std::string in = (dir / "in.csv").string(), out = (dir / "out.csv").string();
   const pid_t child = fork();
@@ -43,7 +44,7 @@ void CorrectAndKill(const fs::path& dir, std::chrono::milliseconds delay) {
     const int null = ::open("/dev/null", O_WRONLY);
     dup2(null, 1);
     dup2(null, 2);
-    execl(PLIANT_CLI, PLIANT_CLI, "correct", "--params", params.c_str(), in.c_str(), "-o",
+    execl(PLIANT_CLI, PLIANT_CLI, command, "--params", params.c_str(), in.c_str(), "-o",
           out.c_str(), static_cast<char*>(nullptr));
     _exit(127);
   }
@@ -59,12 +60,14 @@ std::set<std::string> Files(const fs::path& dir) {
   return names;
 }
 
-TEST(KillDuringCorrect, LeavesTheOldOutputAndNoTemporary) {
-  const fs::path dir = testing::FreshDirectory("kill_correct");
-  WriteLongLog(dir / "in.csv", 400000);  // about 0.4 s of work
+class KillDuring : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(KillDuring, LeavesTheOldOutputAndNoTemporary) {
+  const fs::path dir = testing::FreshDirectory(std::string("kill_") + GetParam());
+  WriteLongLog(dir / "in.csv", 400000);  // 0.4 s (correct) to 1.2 s (filter) of work
   for (int delay_ms : {5, 50, 150}) {
     std::ofstream(dir / "out.csv") << "precious\n";
-    CorrectAndKill(dir, std::chrono::milliseconds(delay_ms));
+    RunAndKill(GetParam(), dir, std::chrono::milliseconds(delay_ms));
     const std::string out = testing::ReadText(dir / "out.csv");
     if (out != "precious\n") {  // it finished before the kill: then it is whole
       EXPECT_EQ(io::ReadLog((dir / "out.csv").string()).Rows(), 400000u) << delay_ms;
@@ -74,10 +77,10 @@ TEST(KillDuringCorrect, LeavesTheOldOutputAndNoTemporary) {
   }
 }
 
-TEST(KillDuringCorrect, WithoutAnOldOutputLeavesNothing) {
-  const fs::path dir = testing::FreshDirectory("kill_correct_new");
+TEST_P(KillDuring, WithoutAnOldOutputLeavesNothing) {
+  const fs::path dir = testing::FreshDirectory(std::string("kill_new_") + GetParam());
   WriteLongLog(dir / "in.csv", 400000);
-  CorrectAndKill(dir, std::chrono::milliseconds(50));
+  RunAndKill(GetParam(), dir, std::chrono::milliseconds(50));
   const auto files = Files(dir);
   if (files.count("out.csv")) {
     EXPECT_EQ(io::ReadLog((dir / "out.csv").string()).Rows(), 400000u);
@@ -86,6 +89,9 @@ TEST(KillDuringCorrect, WithoutAnOldOutputLeavesNothing) {
     EXPECT_EQ(name.find(".tmp"), std::string::npos) << name;
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(Commands, KillDuring, ::testing::Values("correct", "filter"),
+                         [](const auto& info) { return std::string(info.param); });
 
 }  // namespace
 }  // namespace pliant

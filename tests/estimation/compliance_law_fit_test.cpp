@@ -1,6 +1,7 @@
 #include "pliant/estimation/compliance_law_fit.h"
 
 #include <cmath>
+#include <stdexcept>
 
 #include <gtest/gtest.h>
 
@@ -65,6 +66,18 @@ TEST(CompareComplianceLaws, PrefersTheLawThatMadeTheData) {
   EXPECT_LT(comparison[0].aic, comparison[1].aic);
   EXPECT_LT(comparison[0].aic, comparison[2].aic);
   EXPECT_LT(comparison[0].held_out_rms, 1e-8);
+}
+
+// docs/errors.md: a law needs at least as many depths as it has coefficients.
+TEST(ComplianceLawFit, TooFewDepthsIsRefusedWithTheCount) {
+  auto points = PointsOf(ComplianceForm::kInverseCubic, {639.16, -432.35, 136.32, 3.12});
+  points.resize(2);
+  try {
+    FitComplianceLaw(ComplianceForm::kInverseCubic, points, false);
+    ADD_FAILURE() << "fitted a cubic through 2 depths";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "a inverse_cubic law needs 4 depths or more, found 2");
+  }
 }
 
 }  // namespace
