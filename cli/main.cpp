@@ -2,6 +2,7 @@
 #include <cstdio>
 #include <exception>
 #include <map>
+#include <string>
 
 #include "commands.h"
 #include "pliant/io/input_error.h"
@@ -22,6 +23,20 @@ int main(int argc, char** argv) {
   add(pliant::cli::AddSimulateCommand);
   add(pliant::cli::AddFilterCommand);
 
+  // CLI11 answers a mistyped command with "A subcommand is required"; name it.
+  if (argc > 1 && argv[1][0] != '-' && !commands.empty()) {
+    std::string known;
+    bool found = false;
+    for (const CLI::App* sub : app.get_subcommands({})) {
+      found = found || sub->get_name() == argv[1];
+      known += (known.empty() ? "" : ", ") + sub->get_name();
+    }
+    if (!found) {
+      std::fprintf(stderr, "pliant: unknown command '%s' — use one of: %s (pliant --help)\n",
+                   argv[1], known.c_str());
+      return 2;
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

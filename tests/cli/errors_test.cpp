@@ -371,7 +371,6 @@ INSTANTIATE_TEST_SUITE_P(
     Cli11, UsageError,
     ::testing::Values(
         UsageCase{"no_subcommand", "", "A subcommand is required"},
-        UsageCase{"unknown_subcommand", "frobnicate", "A subcommand is required"},
         UsageCase{"missing_option", "correct in.csv -o out.csv", "--params is required"},
         UsageCase{"missing_output", ("correct --params " + kParams + " in.csv"),
                   "--output is required"},
@@ -515,6 +514,15 @@ TEST(Warning, IdentifyWithATipNeverLoadedSaysKAndDeltaKeepTheirPrior) {
   EXPECT_NE(r.err.find("warning: joint 2: the held tip is never loaded beyond 0.20 N\u00b7m"),
             std::string::npos)
       << r.err;
+}
+
+TEST(UsageError, AnUnknownCommandIsNamedWithTheKnownOnes) {
+  const auto dir = FreshDirectory("errors_unknown_command");
+  const auto r = RunCommand(kCli + " identfy in.csv", dir);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_EQ(r.err,
+            "pliant: unknown command 'identfy' \u2014 use one of: correct, identify, params, "
+            "simulate, filter (pliant --help)\n");
 }
 
 }  // namespace
