@@ -2,6 +2,7 @@
 // bias torque shaped like the paper's Fig. 4.
 #include <cmath>
 
+#include "pliant/models/paper_parameters.h"
 #include "pliant/experiments/scenario.h"
 
 namespace pliant::experiments {
@@ -39,20 +40,11 @@ const char* ExperimentName(ExperimentType type) {
 
 Truth DefaultTruth() {
   Truth truth;
-  auto& j1 = truth.joints[0];
-  auto& j2 = truth.joints[1];
-  j1.compliance.cubic.coefficients = {639.16, -432.35, 136.32, 3.12};     // paper eq. (3)
-  j2.compliance.cubic.coefficients = {3163.17, -1969.15, 448.92, -6.00};  // paper eq. (4)
-  j1.backlash_rad = 0.008478;  // dVRK 2017 compensation parameter file
-  j2.backlash_rad = 0.007176;
-  j1.tau_min_nm = j1.deadzone_width_nm = 0.1;  // paper §2
-  j2.tau_min_nm = j2.deadzone_width_nm = 0.2;
-  j1.bias_torque = Table(1.588, 0.199, 0.06, -0.025);
-  j2.bias_torque = Table(0.925, -0.0029145, 0.12, 0.02);
-  for (auto* joint : {&j1, &j2}) {
-    joint->depth_min_m = 0.09;  // paper §3: 14 depths from 0.09 to 0.22 m
-    joint->depth_max_m = 0.22;
-  }
+  // The paper's compliance, tau_min and range and the dVRK file's backlash and
+  // bias level, with a bias that varies with the angle as in the paper's Fig. 4.
+  truth.joints = models::PaperParameters().joints;
+  truth.joints[0].bias_torque = Table(1.588, 0.199, 0.06, -0.025);
+  truth.joints[1].bias_torque = Table(0.925, -0.0029145, 0.12, 0.02);
   return truth;
 }
 

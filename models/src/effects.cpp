@@ -5,6 +5,7 @@
 #include "pliant/models/effects/bias_torque.h"
 #include "pliant/models/effects/bias_torque_fourier.h"
 #include "pliant/models/effects/compliance.h"
+#include "pliant/models/paper_parameters.h"
 
 namespace pliant::models {
 namespace {
@@ -36,16 +37,8 @@ std::vector<ParameterSpec> BiasTorqueEffect::Parameters() const {
   return specs;
 }
 
-ComplianceEffect::ComplianceEffect() {
-  JointParameters joint1, joint2;
-  joint1.compliance.cubic.coefficients = {639.16, -432.35, 136.32, 3.12};
-  joint2.compliance.cubic.coefficients = {3163.17, -1969.15, 448.92, -6.00};
-  for (JointParameters* joint : {&joint1, &joint2}) {
-    joint->depth_min_m = 0.09;
-    joint->depth_max_m = 0.22;
-  }
-  *this = ComplianceEffect(joint1, joint2);
-}
+ComplianceEffect::ComplianceEffect()
+    : ComplianceEffect(PaperParameters().joints[0], PaperParameters().joints[1]) {}
 
 ComplianceEffect::ComplianceEffect(const JointParameters& joint1, const JointParameters& joint2) {
   const JointParameters* joints[2] = {&joint1, &joint2};

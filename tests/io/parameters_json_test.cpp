@@ -6,6 +6,7 @@
 #include <regex>
 
 #include "pliant/io/input_error.h"
+#include "pliant/models/paper_parameters.h"
 #include "temp_directory.h"
 
 namespace pliant::io {
@@ -298,6 +299,25 @@ TEST(ParametersJson, NumberTooLargeForADoubleIsAnInputError) {
   const std::string fuzzed =
       ReadText(std::string(PLIANT_SOURCE_DIR) + "/tests/fuzz/regressions/parameters/number_overflow.json");
   EXPECT_NE(ErrorOf(fuzzed).find("does not fit in a double"), std::string::npos) << ErrorOf(fuzzed);
+}
+
+// The paper's numbers are written twice: in data/paper.json, with their
+// sources, and in models::PaperParameters() for code. They must agree.
+TEST(ParametersJson, PaperFileAgreesWithTheLibrarysPaperParameters) {
+  const models::ModelParameters file = ReadParameters(kPaperPath);
+  const models::ModelParameters code = models::PaperParameters();
+  for (int j = 0; j < 2; ++j) {
+    const auto &a = file.joints[j], &b = code.joints[j];
+    EXPECT_EQ(a.compliance.form, b.compliance.form) << j;
+    EXPECT_EQ(a.compliance.cubic.coefficients, b.compliance.cubic.coefficients) << j;
+    EXPECT_EQ(a.backlash_rad, b.backlash_rad) << j;
+    EXPECT_EQ(a.tau_min_nm, b.tau_min_nm) << j;
+    EXPECT_EQ(a.deadzone_width_nm, b.deadzone_width_nm) << j;
+    EXPECT_EQ(a.depth_min_m, b.depth_min_m) << j;
+    EXPECT_EQ(a.depth_max_m, b.depth_max_m) << j;
+    EXPECT_EQ(a.bias_torque.angle_rad, b.bias_torque.angle_rad) << j;
+    EXPECT_EQ(a.bias_torque.torque_nm, b.bias_torque.torque_nm) << j;
+  }
 }
 
 }  // namespace
