@@ -33,6 +33,7 @@
 #include <vector>
 
 #include "pliant/models/effect.h"
+#include "pliant/models/effects/backlash.h"
 #include "pliant/models/smooth.h"
 
 namespace pliant::models {
@@ -71,12 +72,10 @@ class BacklashHysteresisEffect {
             {"width2", "N·m", defaults_[3], 1e-3, 2.0, 0.1}};
   }
 
+  /// The steady state is the dead-zone deflection, so it is computed there.
   template <typename T>
   Vec2<T> operator()(const T* p, const JointState<T>& state) const {
-    // The parameters enter as Jets too, so that the Jacobian with respect to
-    // delta and w is exact (the step takes them as doubles, for the filter).
-    return {p[0] * SmoothSaturation(state.external_torque_nm[0] / p[2]),
-            p[1] * SmoothSaturation(state.external_torque_nm[1] / p[3])};
+    return BacklashDeadZoneEffect()(p, state);
   }
 
  private:
