@@ -102,6 +102,7 @@ int Usage() {
 int main(int argc, char** argv) {
   int runs = 200, every = 150;
   bool paper_bias = false;
+  int trace = -1;
   std::string scenario_path = PLIANT_SOURCE_DIR "/experiments/scenarios/divot.json";
   estimation::FilterOptions options;
   for (int i = 1; i < argc; ++i) {
@@ -123,6 +124,8 @@ int main(int argc, char** argv) {
       options.backlash_pinned_rate_rad = std::atof(argv[++i]);
     } else if (a == "--backlash-rate" && has) {
       options.backlash_rate_rad = std::atof(argv[++i]);
+    } else if (a == "--trace" && has) {  // print run N every k-th row (debugging)
+      trace = std::atoi(argv[++i]);
     } else if (a == "--scenario" && has) {
       scenario_path = argv[++i];
     } else {
@@ -175,6 +178,17 @@ int main(int argc, char** argv) {
         const Eigen::Vector2d error = e.corrected_rad - Eigen::Vector2d(v[c.q1_true], v[c.q2_true]);
         if (r == chosen) one_per_run.Add(error, e.covariance_rad2, false);
         if (r % every != 0) continue;
+        if (run == trace) {
+          const double k = 7.7e-6;
+          std::printf("%zu t=%.3f fix=%d enc-qt=(%.1f,%.1f) err=(%.1f,%.1f) sd=(%.1f,%.1f) "
+                      "tau=(%.3f,%.3f) b=(%.1f,%.1f) s=(%.3f,%.3f) fl=%u\n",
+                      r, v[c.t], int(s.tip_fixed), (v[c.q1] - v[c.q1_true]) / k,
+                      (v[c.q2] - v[c.q2_true]) / k, error[0] / k, error[1] / k,
+                      std::sqrt(e.covariance_rad2(0, 0)) / k, std::sqrt(e.covariance_rad2(1, 1)) / k,
+                      e.external_torque_nm[0], e.external_torque_nm[1], e.backlash_offset_rad[0] / k,
+                      e.backlash_offset_rad[1] / k, e.compliance_scale[0], e.compliance_scale[1],
+                      e.flags);
+        }
         all.Add(error, e.covariance_rad2);
         (s.tip_fixed ? held : free_tip).Add(error, e.covariance_rad2);
       }
