@@ -6,7 +6,8 @@
 //
 //   build/bench/filter_consistency_bench [--runs 200] [--every 150] [--paper-bias]
 //       [--effort-noise NM] [--encoder-noise RAD] [--torque-rate NM_S]
-//       [--pinned-rate RAD_S] [--backlash-rate RAD_S] [--scenario FILE]
+//       [--pinned-rate RAD_S] [--backlash-rate RAD_S] [--scale-sd SD] [--scale-rate R]
+//       [--scenario FILE] [--trace RUN]
 //
 // Each run: experiments/scenarios/divot.json with hidden_effects={}, one depth
 // (0.10 / 0.15 / 0.20 m), one push direction (the 8 of the scenario), one peak
@@ -93,7 +94,7 @@ int Usage() {
   std::fprintf(stderr,
                "usage: filter_consistency_bench [--runs N] [--every K] [--paper-bias] "
                "[--effort-noise NM] [--encoder-noise RAD] [--torque-rate NM_S] "
-               "[--pinned-rate RAD_S] [--backlash-rate RAD_S] [--scenario FILE]\n");
+               "[--pinned-rate RAD_S] [--backlash-rate RAD_S] [--scale-sd SD] [--scale-rate PER_S] [--scenario FILE] [--trace RUN]\n");
   return 2;
 }
 
@@ -126,6 +127,10 @@ int main(int argc, char** argv) {
       options.backlash_rate_rad = std::atof(argv[++i]);
     } else if (a == "--trace" && has) {  // print run N every k-th row (debugging)
       trace = std::atoi(argv[++i]);
+    } else if (a == "--scale-rate" && has) {
+      options.compliance_scale_rate = std::atof(argv[++i]);
+    } else if (a == "--scale-sd" && has) {
+      options.compliance_scale_sd = std::atof(argv[++i]);
     } else if (a == "--scenario" && has) {
       scenario_path = argv[++i];
     } else {
