@@ -16,10 +16,7 @@ namespace pliant::experiments::detail {
 
 using nlohmann::json;
 
-struct Key {
-  const char* name;
-  bool required;
-};
+using Key = io::JsonKey;
 
 /// A --set override: where it points and how the user wrote it.
 struct Override {
@@ -53,27 +50,9 @@ class ScenarioReader {
   }
 
   void Object(const json& value, const std::string& pointer, const std::vector<Key>& keys) const {
-    if (!value.is_object()) {
-      Fail(pointer, Dotted(pointer) + " must be an object, found " + value.type_name(),
-           "write it as { ... } (docs/simulator.md shows every section)");
-    }
-    std::string allowed;
-    for (const Key& key : keys) allowed += (allowed.empty() ? "" : ", ") + std::string(key.name);
-    for (const auto& item : value.items()) {
-      bool known = false;
-      for (const Key& key : keys) known = known || item.key() == key.name;
-      if (!known) {
-        Fail(
-            Child(pointer, item.key()),
-            "unknown key '" + item.key() + "' in " + Dotted(pointer) + "; allowed keys: " + allowed,
-            "remove the key or correct its spelling");
-      }
-    }
-    for (const Key& key : keys) {
-      if (key.required && !value.contains(key.name)) {
-        Fail(pointer, Dotted(pointer) + " has no key '" + key.name + "'",
-             "add \"" + std::string(key.name) + "\" (docs/simulator.md lists the required keys)");
-      }
+    if (auto p = io::CheckJsonObject(value, pointer, keys, "the scenario",
+                                     " (docs/simulator.md shows every section)")) {
+      Fail(p->pointer, std::move(p->problem), std::move(p->fix));
     }
   }
 

@@ -69,4 +69,32 @@ json ParseJsonInput(const std::string& text, const std::string& file) {
   return document;
 }
 
+std::optional<JsonProblem> CheckJsonObject(const json& value, const std::string& pointer,
+                                           const std::vector<JsonKey>& keys,
+                                           const std::string& top, const std::string& see_docs) {
+  const std::string here = DottedJsonPointer(pointer, top);
+  if (!value.is_object()) {
+    return JsonProblem{pointer, here + " must be an object, found " + value.type_name(),
+                       "write it as { ... }" + see_docs};
+  }
+  std::string allowed;
+  for (const JsonKey& key : keys) allowed += (allowed.empty() ? "" : ", ") + std::string(key.name);
+  for (const auto& item : value.items()) {
+    bool known = false;
+    for (const JsonKey& key : keys) known = known || item.key() == key.name;
+    if (!known) {
+      return JsonProblem{pointer + "/" + detail::PointerToken(item.key()),
+                         "unknown key '" + item.key() + "' in " + here + "; allowed keys: " + allowed,
+                         "remove the key or correct its spelling"};
+    }
+  }
+  for (const JsonKey& key : keys) {
+    if (key.required && !value.contains(key.name)) {
+      return JsonProblem{pointer, here + " has no key '" + key.name + "'",
+                         "add \"" + std::string(key.name) + "\"" + see_docs};
+    }
+  }
+  return std::nullopt;
+}
+
 }  // namespace pliant::io

@@ -21,10 +21,7 @@ using nlohmann::json;
 
 const char kSeeDocs[] = " (docs/parameters.md shows a complete file)";
 
-struct Key {
-  const char* name;
-  bool required;
-};
+using Key = JsonKey;
 
 std::string Dotted(const std::string& pointer) {
   return DottedJsonPointer(pointer, "the top-level object");
@@ -43,27 +40,8 @@ class Reader {
 
   // An object with no key outside `keys` and every required one present.
   void Object(const json& value, const std::string& pointer, const std::vector<Key>& keys) const {
-    if (!value.is_object()) {
-      Fail(pointer, Dotted(pointer) + " must be an object, found " + TypeName(value),
-           std::string("write it as { ... }") + kSeeDocs);
-    }
-    std::string allowed;
-    for (const Key& key : keys) allowed += (allowed.empty() ? "" : ", ") + std::string(key.name);
-    for (const auto& item : value.items()) {
-      bool known = false;
-      for (const Key& key : keys) known = known || item.key() == key.name;
-      if (!known) {
-        Fail(
-            pointer + "/" + detail::PointerToken(item.key()),
-            "unknown key '" + item.key() + "' in " + Dotted(pointer) + "; allowed keys: " + allowed,
-            "remove the key or correct its spelling");
-      }
-    }
-    for (const Key& key : keys) {
-      if (key.required && !value.contains(key.name)) {
-        Fail(pointer, Dotted(pointer) + " has no key '" + key.name + "'",
-             "add \"" + std::string(key.name) + "\"" + kSeeDocs);
-      }
+    if (auto p = CheckJsonObject(value, pointer, keys, "the top-level object", kSeeDocs)) {
+      Fail(p->pointer, std::move(p->problem), std::move(p->fix));
     }
   }
 
