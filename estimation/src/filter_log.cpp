@@ -41,21 +41,10 @@ struct OutputColumns {
   int q1, q2, sd1, sd2, cov, tip, tip_sd, nis, flags;
 };
 
-struct Reference {
-  int q1 = -1, q2 = -1;
-  std::string name;
-};
-
-Reference FindReference(const io::StandardColumns& c) {
-  if (c.q1_true >= 0 && c.q2_true >= 0) return {c.q1_true, c.q2_true, "q*_true"};
-  if (c.q1_ref >= 0 && c.q2_ref >= 0) return {c.q1_ref, c.q2_ref, "q*_ref"};
-  return {};
-}
-
 class Tally {
  public:
   Tally(LogFilterSummary* summary, const io::StandardColumns& in)
-      : summary_(summary), in_(in), reference_(FindReference(in)) {
+      : summary_(summary), in_(in), reference_(io::FindTipReference(in)) {
     summary_->reference = reference_.name;
   }
 
@@ -86,7 +75,7 @@ class Tally {
  private:
   LogFilterSummary* summary_;
   const io::StandardColumns& in_;
-  Reference reference_;
+  io::TipReference reference_;
   double nis_ = 0.0;
   double dof_ = 0.0;
 };

@@ -6,21 +6,6 @@
 #include "pliant/io/log_writer.h"
 
 namespace pliant::estimation {
-namespace {
-
-// Where the log says the tip really was: simulated truth first, else a tracker.
-struct ReferenceColumns {
-  int q1 = -1, q2 = -1;
-  std::string name;
-};
-
-ReferenceColumns FindReference(const io::StandardColumns& c) {
-  if (c.q1_true >= 0 && c.q2_true >= 0) return {c.q1_true, c.q2_true, "q*_true"};
-  if (c.q1_ref >= 0 && c.q2_ref >= 0) return {c.q1_ref, c.q2_ref, "q*_ref"};
-  return {};
-}
-
-}  // namespace
 
 LogCorrectionSummary CorrectLog(const std::string& input_path, const std::string& output_path,
                                 const ComplianceCorrector& corrector,
@@ -35,7 +20,7 @@ LogCorrectionSummary CorrectLog(const std::string& input_path, const std::string
   io::LogWriter writer(output_path, header);
 
   LogCorrectionSummary summary;
-  const ReferenceColumns reference = FindReference(in);
+  const io::TipReference reference = io::FindTipReference(in);
   summary.reference = reference.name;
   std::vector<double> row(header.columns.size());
   while (const double* values = reader.Next()) {

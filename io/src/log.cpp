@@ -53,6 +53,12 @@ StandardColumns::StandardColumns(const LogHeader& header)
       tip_fixed(header.Index("tip_fixed")),
       segment(header.Index("segment")) {}
 
+TipReference FindTipReference(const StandardColumns& c) {
+  if (c.q1_true >= 0 && c.q2_true >= 0) return {c.q1_true, c.q2_true, "q*_true"};
+  if (c.q1_ref >= 0 && c.q2_ref >= 0) return {c.q1_ref, c.q2_ref, "q*_ref"};
+  return {};
+}
+
 std::size_t Log::Rows() const { return Columns() == 0 ? 0 : values.size() / Columns(); }
 
 double Log::Value(std::size_t row, std::size_t column) const {

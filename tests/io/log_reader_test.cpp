@@ -298,5 +298,22 @@ TEST_F(LogReaderTest, AnyChunkSizeReadsTheSameValuesAndLines) {
   }
 }
 
+TEST(TipReference, PrefersTruthThenReferenceThenNone) {
+  LogHeader header;
+  header.columns = {"t", "q1", "q2", "q3", "tau1", "tau2", "q1_ref", "q2_ref"};
+  const TipReference reference = FindTipReference(StandardColumns(header));
+  EXPECT_EQ(reference.name, "q*_ref");
+  EXPECT_EQ(reference.q1, 6);
+  EXPECT_EQ(reference.q2, 7);
+  header.columns.insert(header.columns.end(), {"q2_true", "q1_true"});
+  const TipReference truth = FindTipReference(StandardColumns(header));
+  EXPECT_EQ(truth.name, "q*_true");
+  EXPECT_EQ(truth.q1, 9);
+  EXPECT_EQ(truth.q2, 8);
+  header.columns.resize(6);
+  EXPECT_EQ(FindTipReference(StandardColumns(header)).name, "");
+  EXPECT_EQ(FindTipReference(StandardColumns(header)).q1, -1);
+}
+
 }  // namespace
 }  // namespace pliant::io

@@ -3,16 +3,12 @@
 
 #include <gtest/gtest.h>
 
+#include "loaded_state.h"
 
 namespace pliant::models {
 namespace {
 
-JointState<double> Loaded(double tau1, double tau2, double depth = 0.15) {
-  JointState<double> s;
-  s.insertion_depth_m = depth;
-  s.external_torque_nm << tau1, tau2;
-  return s;
-}
+using testing::Loaded;
 
 TEST(ComplianceEffect, IsKTimesTheExternalTorque) {
   const ComplianceEffect compliance;  // the paper's equations (3) and (4)

@@ -43,6 +43,14 @@ struct StandardColumns {
   explicit StandardColumns(const LogHeader& header);
 };
 
+/// Where a log says the tip really was, for accuracy reports: simulated truth
+/// (q1_true, q2_true) first, else an external reference (q1_ref, q2_ref).
+struct TipReference {
+  int q1 = -1, q2 = -1;  ///< column indices, -1 when the log has neither
+  std::string name;      ///< "q*_true", "q*_ref", or "" when the log has neither
+};
+TipReference FindTipReference(const StandardColumns& columns);
+
 /// A whole log in memory, row-major: value(row, column).
 struct Log {
   LogHeader header;
