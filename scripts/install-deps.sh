@@ -14,6 +14,8 @@ packages=(
   libcli11-dev           # the pliant command line
   libgtest-dev libgmock-dev libbenchmark-dev
   gnuplot-nox            # report pictures
+  libboost-mpi-dev openmpi-bin  # pliant montecarlo across machines (Boost.MPI over OpenMPI)
+  chromium               # headless check that the diagnose report renders
 )
 
 missing=()

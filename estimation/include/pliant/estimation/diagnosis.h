@@ -1,0 +1,115 @@
+#pragma once
+// Model-versus-measurement diagnostics (docs/diagnose.md): compare the model's
+// prediction with every measurement of a log, find where it fails (which
+// channel, at which lag, explains the residual), fit every candidate effect of
+// the catalogue as an extension of the model, rank them by held-out error
+// reduction, and refit with the chosen ones in.
+//
+//   const io::Log log = io::ReadLog("divot_friction.csv");
+//   const auto params = io::ReadParameters("identified.json");
+//   const Diagnosis d = Diagnose(log, params, {});
+//   if (d.missing_effect) std::cout << *d.missing_effect << "\n";
+//
+// The residual is the joint-angle error of the model where the log says where
+// the tip really was: tip_fixed segments (the tip angle is one unknown per
+// segment) or q1_ref/q2_ref (an external tracker). Errors are reported in rad
+// per joint and in mm at the tip through the PSM kinematics.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "pliant/estimation/filter.h"
+#include "pliant/io/log.h"
+#include "pliant/models/parameters.h"
+
+namespace pliant::estimation {
+
+struct DiagnoseOptions {
+  /// Catalogue effects to add to the model before comparing (--add NAME).
+  std::vector<std::string> added_effects;
+  /// Candidates to try; empty means every catalogue effect marked as a
+  /// candidate (see CandidateEffectNames()).
+  std::vector<std::string> candidates;
+  int max_lag_samples = 30;          ///< residual–channel cross-correlation over ±this
+  double family_significance = 0.01; ///< false-discovery level over all tests at once
+  int folds = 5;                     ///< cross-validation folds, by segment
+  FilterOptions filter;              ///< for the standardised innovations
+};
+
+/// How well one residual series fits its noise model.
+struct ResidualStatistics {
+  std::size_t samples = 0;
+  double rms_mm = 0.0;                ///< at the tip
+  double rms_rad[2] = {0.0, 0.0};     ///< per joint
+  double bias_rad[2] = {0.0, 0.0};
+  double mean_nis = 0.0;              ///< filter's NIS per degree of freedom
+  double nis_band[2] = {0.0, 0.0};    ///< its two-sided 95 % χ² band
+  double ljung_box_q = 0.0;           ///< whiteness of the standardised innovations
+  double ljung_box_p = 1.0;
+  double normality_statistic = 0.0;   ///< Jarque–Bera on the standardised innovations
+  double normality_p = 1.0;
+};
+
+/// One channel of the log that explains part of the residual.
+struct ChannelFinding {
+  std::string name;        ///< log column, or a derived one ("|tau1|", "sign(v1)", "reversal")
+  int joint = 1;           ///< residual of joint 1 or 2
+  int lag = 0;             ///< samples; > 0: the residual follows the channel
+  double score = 0.0;      ///< fraction of residual variance explained, 0..1
+  double p_value = 1.0;    ///< adjusted for the number of channels × lags tested
+  std::string finding;     ///< in words: "joint 1 reads 0.8 mrad high while v1 > 0 …"
+};
+
+/// One candidate effect fitted as an extension of the model.
+struct EffectFinding {
+  std::string name;                  ///< catalogue key
+  std::string description;           ///< its physical explanation
+  std::vector<std::string> channels; ///< log channels it uses
+  double score = 0.0;          ///< held-out RMS reduction, fraction (0.6 = 60 % less error)
+  double p_value = 1.0;        ///< of the improvement, adjusted for the candidates tried
+  double delta_aic = 0.0;      ///< AIC(with) − AIC(without); < 0 favours the effect
+  double delta_bic = 0.0;
+  double heldout_rms_before_mm = 0.0;
+  double heldout_rms_after_mm = 0.0;
+  double size = 0.0;           ///< its largest contribution over the log, in `size_unit`
+  double size_sd = 0.0;
+  std::string size_unit;       ///< "mm" at the tip
+  std::vector<std::string> parameter_names;
+  std::vector<double> parameters;     ///< fitted values
+  std::vector<double> parameter_sd;   ///< from ceres::Covariance
+  bool missing = false;        ///< significant and large enough to call missing
+};
+
+/// Sample-by-sample series, for plots (one entry per log row used).
+struct ResidualSeries {
+  std::vector<std::size_t> row;      ///< index into the log
+  std::vector<double> residual_before_rad[2];
+  std::vector<double> residual_after_rad[2];  ///< with the added / best effect in
+  std::vector<double> standardised_innovation;
+};
+
+struct Diagnosis {
+  std::string reference;          ///< "tip_fixed", "q*_ref", "q*_true"
+  double rms_before_mm = 0.0;     ///< held-out, the model as given
+  double rms_after_mm = 0.0;      ///< held-out, with the added effects (or the best, if none added)
+  std::optional<std::string> missing_effect;
+  ResidualStatistics before;
+  ResidualStatistics after;
+  std::vector<EffectFinding> effects;    ///< best first
+  std::vector<ChannelFinding> channels;  ///< best first
+  std::vector<std::string> added_effects;
+  ResidualSeries series;
+};
+
+/// Catalogue effects offered as candidates (those whose effect is not part
+/// of the base model).
+std::vector<std::string> CandidateEffectNames();
+
+/// Throws io::InputError when the log cannot be diagnosed (no tip_fixed
+/// segment and no reference columns; an unknown effect name), naming the
+/// problem and what to do.
+Diagnosis Diagnose(const io::Log& log, const std::string& log_path,
+                   const models::ModelParameters& parameters, const DiagnoseOptions& options);
+
+}  // namespace pliant::estimation
