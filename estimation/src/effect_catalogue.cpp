@@ -4,8 +4,10 @@
 #include <stdexcept>
 
 #include "pliant/models/effects/backlash.h"
+#include "pliant/models/effects/backlash_depth.h"
 #include "pliant/models/effects/backlash_hysteresis.h"
 #include "pliant/models/effects/bias_torque.h"
+#include "pliant/models/effects/bias_torque_cross_joint.h"
 #include "pliant/models/effects/bias_torque_depth.h"
 #include "pliant/models/effects/bias_torque_fourier.h"
 #include "pliant/models/effects/compliance.h"
@@ -47,6 +49,8 @@ EffectCatalogue& EffectCatalogue::Global() {
     c->Add<models::BiasTorqueDepthEffect>();
     c->Add<models::LoadDependentComplianceEffect>();
     c->Add<models::DeflectionCouplingEffect>();
+    c->Add<models::BiasTorqueCrossJointEffect>();
+    c->Add<models::BacklashDepthEffect>();
     return c;
   }();
   return *catalogue;

@@ -35,6 +35,23 @@ struct DiagnoseOptions {
   double family_significance = 0.01; ///< false-discovery level over all tests at once
   int folds = 5;                     ///< cross-validation folds, by segment
   FilterOptions filter;              ///< for the standardised innovations
+  /// Where the tip was: "auto" (q*_ref, else tip_fixed, else q*_true),
+  /// "q*_ref", "tip_fixed" or "q*_true".
+  std::string reference = "auto";
+  /// A joint's sample is compared only when its load exceeds this many times
+  /// the model's dead-zone width (inside the clearance the shaft's place has
+  /// memory the static model lacks).
+  double min_load_factor = 2.0;
+  /// Compared samples are thinned evenly to at most this many (speed).
+  std::size_t max_samples = 6000;
+  /// An effect is called missing only if it also cuts the held-out RMS by
+  /// at least this fraction.
+  double min_heldout_reduction = 0.2;
+  /// RMS errors are of the residual averaged over windows this long (s):
+  /// the model's error, with the sensors' white noise averaged out. 0: per sample.
+  double rms_window_s = 0.05;
+  /// Lags of the Ljung–Box test of whiteness.
+  int ljung_box_lags = 20;
 };
 
 /// How well one residual series fits its noise model.

@@ -1,0 +1,242 @@
+// Ceres fit of effects as extensions of the model (docs/diagnose-method.md).
+// The only diagnosis translation unit that differentiates: the effects are
+// evaluated through the catalogue's EffectJet interface, 8 parameters at a
+// time, inside one cost over all training samples. That one cost also
+// profiles the tip angle out (tip_fixed: subtract each segment's mean from
+// the residuals and from their Jacobian rows), which a per-sample cost could
+// not do without one nuisance parameter block per segment.
+#include <algorithm>
+#include <cmath>
+
+#include <ceres/ceres.h>
+
+#include "diagnosis_internal.h"
+
+namespace pliant::estimation::diagnosis {
+namespace {
+
+class ResidualCost final : public ceres::CostFunction {
+ public:
+  ResidualCost(const Problem& problem, const BaseModel& model, std::vector<Term> terms,
+               std::size_t first_fitted, std::vector<std::size_t> samples)
+      : problem_(problem), model_(model), terms_(std::move(terms)), first_fitted_(first_fitted),
+        samples_(std::move(samples)) {
+    set_num_residuals(int(2 * samples_.size()));
+    for (std::size_t t = first_fitted_; t < terms_.size(); ++t)
+      mutable_parameter_block_sizes()->push_back(int(terms_[t].parameters.size()));
+    for (std::size_t t = 0; t < terms_.size(); ++t) {
+      jet_constants_.emplace_back();
+      for (double v : terms_[t].parameters) jet_constants_.back().emplace_back(v);
+    }
+  }
+
+  bool Evaluate(double const* const* parameters, double* residuals,
+                double** jacobians) const override {
+    const std::size_t n = samples_.size();
+    std::vector<const double*> values;
+    std::vector<std::vector<EffectJet>> jets = jet_constants_;
+    for (std::size_t t = 0; t < terms_.size(); ++t) {
+      const bool fitted = t >= first_fitted_;
+      values.push_back(fitted ? parameters[t - first_fitted_] : terms_[t].parameters.data());
+      if (fitted) {
+        for (std::size_t k = 0; k < jets[t].size(); ++k) jets[t][k] = EffectJet(values[t][k]);
+      }
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      const Sample& s = problem_.samples[samples_[i]];
+      const Eigen::Vector2d r = ModelResidual<double>(s, model_, terms_, values);
+      for (int j = 0; j < 2; ++j)
+        residuals[2 * i + j] = s.used[j] ? r[j] / problem_.noise_sd_rad[j] : 0.0;
+    }
+    Profile(residuals, 1);
+    if (!jacobians) return true;
+    for (std::size_t t = first_fitted_; t < terms_.size(); ++t) {
+      double* jacobian = jacobians[t - first_fitted_];
+      if (!jacobian) continue;
+      const int size = int(terms_[t].parameters.size());
+      for (int start = 0; start < size; start += kEffectJetSize) {
+        std::vector<std::vector<EffectJet>> seeded = jets;
+        for (int k = start; k < std::min(size, start + kEffectJetSize); ++k)
+          seeded[t][k].v[k - start] = 1.0;
+        std::vector<const EffectJet*> pointers;
+        for (const auto& block : seeded) pointers.push_back(block.data());
+        for (std::size_t i = 0; i < n; ++i) {
+          const Sample& s = problem_.samples[samples_[i]];
+          const models::Vec2<EffectJet> r = ModelResidual<EffectJet>(s, model_, terms_, pointers);
+          for (int j = 0; j < 2; ++j) {
+            for (int k = start; k < std::min(size, start + kEffectJetSize); ++k) {
+              jacobian[(2 * i + j) * size + k] =
+                  s.used[j] ? r[j].v[k - start] / problem_.noise_sd_rad[j] : 0.0;
+            }
+          }
+        }
+      }
+      Profile(jacobian, size);
+    }
+    return true;
+  }
+
+ private:
+  // Subtracts each group's mean (over its used entries) from rows of width
+  // `width`: the tip angle of a held segment is unknown.
+  void Profile(double* rows, int width) const {
+    if (!problem_.profile_tip) return;
+    const int g = problem_.tip_groups;
+    std::vector<double> sum(std::size_t(2 * g * width), 0.0), count(std::size_t(2 * g), 0.0);
+    for (std::size_t i = 0; i < samples_.size(); ++i) {
+      const Sample& s = problem_.samples[samples_[i]];
+      for (int j = 0; j < 2; ++j) {
+        if (!s.used[j]) continue;
+        count[2 * s.tip_group + j] += 1.0;
+        for (int k = 0; k < width; ++k) sum[(2 * s.tip_group + j) * width + k] += rows[(2 * i + j) * width + k];
+      }
+    }
+    for (std::size_t i = 0; i < samples_.size(); ++i) {
+      const Sample& s = problem_.samples[samples_[i]];
+      for (int j = 0; j < 2; ++j) {
+        if (!s.used[j]) continue;
+        const double c = count[2 * s.tip_group + j];
+        for (int k = 0; k < width; ++k)
+          rows[(2 * i + j) * width + k] -= sum[(2 * s.tip_group + j) * width + k] / c;
+      }
+    }
+  }
+
+  const Problem& problem_;
+  const BaseModel& model_;
+  std::vector<Term> terms_;
+  std::size_t first_fitted_;
+  std::vector<std::size_t> samples_;
+  std::vector<std::vector<EffectJet>> jet_constants_;
+};
+
+// Gaussian prior (p − default)/sd on each parameter of a block.
+class PriorCost final : public ceres::CostFunction {
+ public:
+  explicit PriorCost(std::vector<models::ParameterSpec> specs) : specs_(std::move(specs)) {
+    set_num_residuals(int(specs_.size()));
+    mutable_parameter_block_sizes()->push_back(int(specs_.size()));
+  }
+  bool Evaluate(double const* const* p, double* residuals, double** jacobians) const override {
+    const int n = int(specs_.size());
+    for (int k = 0; k < n; ++k) residuals[k] = (p[0][k] - specs_[k].default_value) / specs_[k].prior_sd;
+    if (jacobians && jacobians[0]) {
+      std::fill(jacobians[0], jacobians[0] + n * n, 0.0);
+      for (int k = 0; k < n; ++k) jacobians[0][k * n + k] = 1.0 / specs_[k].prior_sd;
+    }
+    return true;
+  }
+
+ private:
+  std::vector<models::ParameterSpec> specs_;
+};
+
+}  // namespace
+
+FitResult FitTerms(const Problem& problem, const BaseModel& model, const std::vector<Term>& fixed,
+                   const std::vector<Term>& fitted, const std::vector<bool>& train_group,
+                   bool covariance, double size_factor) {
+  std::vector<std::size_t> samples;
+  for (std::size_t i = 0; i < problem.samples.size(); ++i) {
+    if (train_group[problem.samples[i].group]) samples.push_back(i);
+  }
+  std::vector<Term> terms = fixed;
+  terms.insert(terms.end(), fitted.begin(), fitted.end());
+  FitResult result;
+  for (const Term& term : fitted) result.parameters.push_back(term.parameters);
+
+  ceres::Problem::Options problem_options;
+  problem_options.cost_function_ownership = ceres::TAKE_OWNERSHIP;
+  ceres::Problem ceres_problem(problem_options);
+  std::vector<double*> blocks;
+  for (auto& values : result.parameters) blocks.push_back(values.data());
+  ceres_problem.AddResidualBlock(new ResidualCost(problem, model, terms, fixed.size(), samples),
+                                 nullptr, blocks);
+  for (std::size_t t = 0; t < fitted.size(); ++t) {
+    const auto specs = fitted[t].effect->Parameters();
+    ceres_problem.AddResidualBlock(new PriorCost(specs), nullptr, blocks[t]);
+    for (std::size_t k = 0; k < specs.size(); ++k) {
+      ceres_problem.SetParameterLowerBound(blocks[t], int(k), specs[k].lower_bound);
+      ceres_problem.SetParameterUpperBound(blocks[t], int(k), specs[k].upper_bound);
+    }
+  }
+  ceres::Solver::Options options;
+  options.linear_solver_type = ceres::DENSE_QR;
+  options.max_num_iterations = 60;
+  options.num_threads = 1;
+  ceres::Solver::Summary summary;
+  ceres::Solve(options, &ceres_problem, &summary);
+  if (!covariance) return result;
+
+  ceres::Covariance::Options covariance_options;
+  covariance_options.algorithm_type = ceres::DENSE_SVD;
+  covariance_options.null_space_rank = -1;  // weakly identified shapes: pseudo-inverse
+  ceres::Covariance ceres_covariance(covariance_options);
+  std::vector<const double*> const_blocks(blocks.begin(), blocks.end());
+  int total = 0;
+  for (const auto& values : result.parameters) total += int(values.size());
+  result.covariance = Eigen::MatrixXd::Zero(total, total);
+  if (ceres_covariance.Compute(const_blocks, &ceres_problem)) {
+    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> c(total, total);
+    if (ceres_covariance.GetCovarianceMatrix(const_blocks, c.data())) {
+      // Residuals beyond their noise model and autocorrelated samples both
+      // make the nominal covariance too small.
+      const double n = double(2 * samples.size());
+      const double dispersion = std::max(1.0, 2.0 * summary.final_cost / std::max(1.0, n - total));
+      result.covariance = c * dispersion / size_factor;
+      result.covariance_ok = true;
+    }
+  }
+  int offset = 0;
+  for (const auto& values : result.parameters) {
+    result.parameter_sd.emplace_back();
+    for (std::size_t k = 0; k < values.size(); ++k, ++offset)
+      result.parameter_sd.back().push_back(std::sqrt(std::max(0.0, result.covariance(offset, offset))));
+  }
+  return result;
+}
+
+std::array<double, 2> ContributionSizeMm(const Problem& problem, const BaseModel& model,
+                                         const std::vector<Term>& fixed, const Term& term,
+                                         const Eigen::MatrixXd& covariance) {
+  std::vector<Term> with = fixed;
+  with.push_back(term);
+  std::vector<const double*> values;
+  for (const Term& t : with) values.push_back(t.parameters.data());
+  double largest = 0.0;
+  std::size_t at = 0;
+  for (std::size_t i = 0; i < problem.samples.size(); ++i) {
+    const Sample& s = problem.samples[i];
+    const Eigen::Vector2d a = ModelResidual<double>(s, model, fixed, values);
+    const Eigen::Vector2d b = ModelResidual<double>(s, model, with, values);
+    double square = 0.0;
+    for (int j = 0; j < 2; ++j) square += s.used[j] ? std::pow((a[j] - b[j]) * s.mm_per_rad[j], 2) : 0.0;
+    if (square > largest) largest = square, at = i;
+  }
+  const double size = std::sqrt(largest);
+  if (!(size > 0.0) || covariance.rows() != int(term.parameters.size())) return {size, 0.0};
+  // d size / d p at the largest sample, 8 parameters at a time.
+  const Sample& s = problem.samples[at];
+  std::vector<std::vector<EffectJet>> jets;
+  for (const Term& t : with) jets.emplace_back(t.parameters.begin(), t.parameters.end());
+  const int m = int(term.parameters.size());
+  Eigen::VectorXd gradient(m);
+  for (int start = 0; start < m; start += kEffectJetSize) {
+    auto seeded = jets;
+    for (int k = start; k < std::min(m, start + kEffectJetSize); ++k) seeded.back()[k].v[k - start] = 1.0;
+    std::vector<const EffectJet*> pointers;
+    for (const auto& block : seeded) pointers.push_back(block.data());
+    std::vector<const EffectJet*> base_pointers(pointers.begin(), pointers.end() - 1);
+    const auto a = ModelResidual<EffectJet>(s, model, fixed, base_pointers);
+    const auto b = ModelResidual<EffectJet>(s, model, with, pointers);
+    EffectJet square(0.0);
+    for (int j = 0; j < 2; ++j) {
+      if (s.used[j]) square += (a[j] - b[j]) * (a[j] - b[j]) * (s.mm_per_rad[j] * s.mm_per_rad[j]);
+    }
+    const EffectJet norm = sqrt(square);
+    for (int k = start; k < std::min(m, start + kEffectJetSize); ++k) gradient[k] = norm.v[k - start];
+  }
+  return {size, std::sqrt(std::max(0.0, double(gradient.transpose() * covariance * gradient)))};
+}
+
+}  // namespace pliant::estimation::diagnosis

@@ -1,0 +1,261 @@
+// Which rows of a log the diagnosis compares, against what reference, and the
+// base model's residual there (docs/diagnose-method.md).
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "diagnosis_internal.h"
+#include "pliant/io/input_error.h"
+#include "pliant/models/psm_kinematics.h"
+
+namespace pliant::estimation::diagnosis {
+namespace {
+
+double ClearanceLoad(const models::JointParameters& joint) {
+  // The load over which the model's dead zone takes up the clearance; below a
+  // few times it the shaft's place in the clearance has memory the model lacks.
+  return std::max({joint.deadzone_width_nm, joint.tau_min_nm, 0.05});
+}
+
+models::BacklashDeadZoneEffect DeadZoneOf(const models::ModelParameters& p) {
+  return models::BacklashDeadZoneEffect(p.joints[0].backlash_rad, p.joints[1].backlash_rad,
+                                        ClearanceLoad(p.joints[0]), ClearanceLoad(p.joints[1]));
+}
+
+std::string ChooseReference(const io::Log& log, const io::StandardColumns& c,
+                            const std::string& wanted, const std::string& log_path) {
+  const bool has_ref = c.q1_ref >= 0 && c.q2_ref >= 0;
+  const bool has_true = c.q1_true >= 0 && c.q2_true >= 0;
+  bool has_fixed = false;
+  if (c.tip_fixed >= 0) {
+    for (std::size_t r = 0; r < log.Rows() && !has_fixed; ++r)
+      has_fixed = log.Value(r, c.tip_fixed) > 0.5;
+  }
+  const std::string fix =
+      "log the tip held still (tip_fixed = 1 with a segment number) or add q1_ref, q2_ref from "
+      "a tracker";
+  if (wanted == "auto") {
+    if (has_ref) return "q*_ref";
+    if (has_fixed) return "tip_fixed";
+    if (has_true) return "q*_true";
+    throw io::InputError(log_path, 1, 0,
+                         "the log says nowhere where the tip was (no tip_fixed rows, no q1_ref/q2_ref)",
+                         fix);
+  }
+  const bool available = (wanted == "q*_ref" && has_ref) || (wanted == "tip_fixed" && has_fixed) ||
+                         (wanted == "q*_true" && has_true);
+  if (!available) {
+    throw io::InputError(log_path, 1, 0, "the log has no " + wanted + " reference", fix);
+  }
+  return wanted;
+}
+
+// Velocity from the log, or by central differences of the encoder.
+std::vector<double> Velocity(const io::Log& log, const io::StandardColumns& c, int joint) {
+  const int column = joint == 0 ? c.v1 : c.v2;
+  if (column >= 0) return log.Column(log.header.columns[column]);
+  const int q = joint == 0 ? c.q1 : c.q2;
+  const std::size_t n = log.Rows();
+  std::vector<double> v(n, 0.0);
+  for (std::size_t r = 1; r + 1 < n; ++r) {
+    const double dt = log.Value(r + 1, c.t) - log.Value(r - 1, c.t);
+    if (dt > 0.0) v[r] = (log.Value(r + 1, q) - log.Value(r - 1, q)) / dt;
+  }
+  return v;
+}
+
+}  // namespace
+
+BaseModel::BaseModel(const models::ModelParameters& parameters)
+    : parameters_(parameters),
+      compliance_(parameters.joints[0], parameters.joints[1]),
+      deadzone_(DeadZoneOf(parameters)) {
+  for (const auto& joint : parameters.joints) {
+    compliance_values_.insert(compliance_values_.end(), joint.compliance.cubic.coefficients.begin(),
+                              joint.compliance.cubic.coefficients.end());
+  }
+  for (int j = 0; j < 2; ++j) {
+    deadzone_values_[j] = parameters.joints[j].backlash_rad;
+    deadzone_values_[2 + j] = ClearanceLoad(parameters.joints[j]);
+    clearance_load_nm_[j] = deadzone_values_[2 + j];
+  }
+}
+
+Problem BuildProblem(const io::Log& log, const std::string& log_path, const BaseModel& model,
+                     const std::vector<Term>& added, const DiagnoseOptions& options) {
+  const io::StandardColumns c(log.header);
+  Problem problem;
+  problem.reference = ChooseReference(log, c, options.reference, log_path);
+  problem.profile_tip = problem.reference == "tip_fixed";
+  const int ref1 = problem.reference == "q*_ref" ? c.q1_ref : c.q1_true;
+  const int ref2 = problem.reference == "q*_ref" ? c.q2_ref : c.q2_true;
+  const std::vector<double> v[2] = {Velocity(log, c, 0), Velocity(log, c, 1)};
+  const auto& joints = model.parameters().joints;
+  std::vector<const double*> values;
+  for (const Term& term : added) values.push_back(term.parameters.data());
+
+  // Candidate rows, with their group (segment, else run of tip_fixed rows).
+  std::vector<Sample> all;
+  std::map<long, int> group_of_segment;
+  int run = -1;
+  bool previous_kept = false;
+  std::map<int, int> tip_group_of_run;
+  for (std::size_t r = 0; r < log.Rows(); ++r) {
+    const bool fixed = c.tip_fixed >= 0 && log.Value(r, c.tip_fixed) > 0.5;
+    const bool keep = problem.profile_tip ? fixed : (c.tip_fixed < 0 || fixed);
+    if (keep && !previous_kept) ++run;
+    previous_kept = keep;
+    if (!keep) continue;
+    Sample s;
+    s.row = r;
+    s.state.encoder_angle_rad = {log.Value(r, c.q1), log.Value(r, c.q2)};
+    s.state.insertion_depth_m = log.Value(r, c.q3);
+    s.state.velocity_rad_s = {v[0][r], v[1][r]};
+    s.state.time_s = log.Value(r, c.t);
+    const Eigen::Vector2d effort(log.Value(r, c.tau1), log.Value(r, c.tau2));
+    if (!problem.profile_tip) s.reference_rad = {log.Value(r, ref1), log.Value(r, ref2)};
+    if (!s.state.encoder_angle_rad.allFinite() || !std::isfinite(s.state.insertion_depth_m) ||
+        !effort.allFinite() || !s.reference_rad.allFinite())
+      continue;
+    for (int j = 0; j < 2; ++j) {
+      s.state.external_torque_nm[j] =
+          effort[j] - models::BiasTorqueAt(joints[j], s.state.encoder_angle_rad[j],
+                                           s.state.insertion_depth_m);
+    }
+    models::JointState<double> loaded = s.state;
+    for (std::size_t i = 0; i < added.size(); ++i) {
+      if (added[i].effect->Info().channel == models::Channel::kInternalTorque)
+        loaded.external_torque_nm -= added[i].effect->Evaluate(values[i], loaded);
+    }
+    for (int j = 0; j < 2; ++j) {
+      s.used[j] = std::abs(loaded.external_torque_nm[j]) >
+                      options.min_load_factor * model.clearance_load_nm(j) &&
+                  std::abs(effort[j]) < options.filter.effort_limit_nm;
+    }
+    if (!s.used[0] && !s.used[1]) continue;
+    const long segment = c.segment >= 0 ? std::lround(log.Value(r, c.segment)) : run;
+    s.group = group_of_segment.emplace(segment, int(group_of_segment.size())).first->second;
+    s.tip_group = tip_group_of_run.emplace(run, int(tip_group_of_run.size())).first->second;
+    const Eigen::Matrix2d to_mm = models::TipDisplacementJacobianMm(
+        Eigen::Vector3d(s.state.encoder_angle_rad[0], s.state.encoder_angle_rad[1],
+                        s.state.insertion_depth_m));
+    s.mm_per_rad = to_mm.diagonal();
+    all.push_back(s);
+  }
+  if (all.empty()) {
+    throw io::InputError(log_path, 1, 0,
+                         "no row of the log has the tip where the reference says and a load "
+                         "beyond the cannula clearance",
+                         "push the held tip to at least " +
+                             std::to_string(options.min_load_factor * model.clearance_load_nm(0)) +
+                             " N·m on a joint");
+  }
+  // Thin evenly for speed (docs/diagnose-method.md: fitting on a subsample).
+  const std::size_t stride =
+      std::max<std::size_t>(1, (all.size() + options.max_samples - 1) / options.max_samples);
+  for (std::size_t i = 0; i < all.size(); i += stride) problem.samples.push_back(all[i]);
+
+  // Too few segments for the folds: cut each into consecutive parts (under
+  // tip_fixed each part keeps its own tip angle, which stays valid).
+  int groups = int(group_of_segment.size());
+  const int wanted_folds = std::max(2, options.folds);
+  if (groups < wanted_folds) {
+    const int parts = (wanted_folds + groups - 1) / groups;
+    std::vector<std::size_t> count(groups, 0), seen(groups, 0);
+    for (const Sample& s : problem.samples) ++count[s.group];
+    for (Sample& s : problem.samples) {
+      const int part = int(seen[s.group]++ * parts / std::max<std::size_t>(1, count[s.group]));
+      s.group = s.group * parts + part;
+    }
+    groups *= parts;
+  }
+  problem.groups = groups;
+  problem.tip_groups = int(tip_group_of_run.size());
+  problem.rms_window_s = options.rms_window_s;
+  problem.folds = std::min(wanted_folds, groups);
+  for (int g = 0; g < groups; ++g) problem.fold_of_group.push_back(g % problem.folds);
+
+  // Noise of the residual: effort noise through K(L) at the median depth,
+  // encoder quantisation and the reference's own noise.
+  std::vector<double> depths;
+  for (const Sample& s : problem.samples) depths.push_back(s.state.insertion_depth_m);
+  std::nth_element(depths.begin(), depths.begin() + depths.size() / 2, depths.end());
+  const double reference_sd = problem.reference == "q*_ref" ? options.filter.reference_noise_rad : 0.0;
+  for (int j = 0; j < 2; ++j) {
+    const double k = models::ComplianceAt(joints[j], depths[depths.size() / 2]);
+    problem.noise_sd_rad[j] = std::sqrt(std::pow(k * options.filter.effort_noise_nm, 2) +
+                                        std::pow(options.filter.encoder_noise_rad, 2) +
+                                        reference_sd * reference_sd);
+  }
+  return problem;
+}
+
+void ProfileGroups(const Problem& problem, std::vector<Eigen::Vector2d>& residual,
+                   const std::vector<bool>* only) {
+  if (!problem.profile_tip) return;
+  std::vector<Eigen::Vector2d> sum(problem.tip_groups, Eigen::Vector2d::Zero());
+  std::vector<Eigen::Vector2d> count(problem.tip_groups, Eigen::Vector2d::Zero());
+  for (std::size_t i = 0; i < residual.size(); ++i) {
+    const Sample& s = problem.samples[i];
+    if (only && !(*only)[s.group]) continue;
+    for (int j = 0; j < 2; ++j) {
+      if (!s.used[j]) continue;
+      sum[s.tip_group][j] += residual[i][j];
+      count[s.tip_group][j] += 1.0;
+    }
+  }
+  for (std::size_t i = 0; i < residual.size(); ++i) {
+    const Sample& s = problem.samples[i];
+    if (only && !(*only)[s.group]) continue;
+    for (int j = 0; j < 2; ++j) {
+      if (s.used[j]) residual[i][j] -= sum[s.tip_group][j] / count[s.tip_group][j];
+    }
+  }
+}
+
+std::vector<Eigen::Vector2d> Residuals(const Problem& problem, const BaseModel& model,
+                                       const std::vector<Term>& terms,
+                                       const std::vector<bool>* only) {
+  std::vector<const double*> values;
+  for (const Term& term : terms) values.push_back(term.parameters.data());
+  std::vector<Eigen::Vector2d> residual;
+  residual.reserve(problem.samples.size());
+  for (const Sample& s : problem.samples) {
+    Eigen::Vector2d r = ModelResidual<double>(s, model, terms, values);
+    for (int j = 0; j < 2; ++j) r[j] = s.used[j] ? r[j] : 0.0;
+    residual.push_back(r);
+  }
+  ProfileGroups(problem, residual, only);
+  return residual;
+}
+
+double TipRmsMm(const Problem& problem, const std::vector<Eigen::Vector2d>& residual,
+                const std::vector<bool>* keep_group) {
+  double sum[2] = {0.0, 0.0}, count[2] = {0.0, 0.0};
+  for (int j = 0; j < 2; ++j) {
+    double window_sum = 0.0, window_count = 0.0, window_start = 0.0;
+    int window_group = -1;
+    auto close = [&] {
+      if (window_count > 0.0) sum[j] += window_sum * window_sum / window_count;
+      window_sum = window_count = 0.0;
+    };
+    for (std::size_t i = 0; i < residual.size(); ++i) {
+      const Sample& s = problem.samples[i];
+      if (keep_group && !(*keep_group)[s.group]) continue;
+      if (!s.used[j]) continue;
+      if (s.group != window_group || s.state.time_s - window_start >= problem.rms_window_s) {
+        close();
+        window_group = s.group, window_start = s.state.time_s;
+      }
+      window_sum += residual[i][j] * s.mm_per_rad[j];
+      window_count += 1.0;
+      count[j] += 1.0;
+    }
+    close();
+  }
+  double mean_square = 0.0;
+  for (int j = 0; j < 2; ++j) mean_square += count[j] > 0.0 ? sum[j] / count[j] : 0.0;
+  return std::sqrt(mean_square);
+}
+
+}  // namespace pliant::estimation::diagnosis

@@ -1,0 +1,178 @@
+#pragma once
+// Shared pieces of Diagnose() (estimation/diagnosis.h), split by job:
+//   diagnosis_data.cpp        which rows, which reference, the base model's residual
+//   diagnosis_statistics.cpp  Ljung–Box, Jarque–Bera, effective sample size, Holm
+//   diagnosis_channels.cpp    where the residual comes from (channels × lags)
+//   diagnosis_costs.cpp       Ceres fit of effects as extensions of the model (the only
+//                             translation unit with Jets in a cost)
+//   diagnosis.cpp             the whole diagnosis
+#include <array>
+#include <cstddef>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "pliant/estimation/diagnosis.h"
+#include "pliant/estimation/effect_catalogue.h"
+#include "pliant/io/log.h"
+#include "pliant/models/effects/backlash.h"
+#include "pliant/models/effects/compliance.h"
+#include "pliant/models/parameters.h"
+
+namespace pliant::estimation::diagnosis {
+
+/// One log row the diagnosis compares.
+struct Sample {
+  std::size_t row = 0;
+  models::JointState<double> state;  ///< external torque: tau_meas − tau0 (no effects)
+  Eigen::Vector2d reference_rad{0.0, 0.0};  ///< tip angle; 0 when profiled (tip_fixed)
+  int group = 0;                     ///< segment (or time block): the CV unit
+  int tip_group = 0;                 ///< run of tip_fixed rows: one unknown tip angle
+  std::array<bool, 2> used{false, false};  ///< joint loaded beyond the clearance
+  Eigen::Vector2d mm_per_rad{0.0, 0.0};    ///< tip displacement per joint error
+};
+
+/// The rows, their reference and the noise scale that standardises residuals.
+struct Problem {
+  std::string reference;    ///< "q*_ref", "q*_true", "tip_fixed"
+  bool profile_tip = false; ///< tip angle unknown: one per group, profiled out
+  std::vector<Sample> samples;
+  int groups = 0;
+  int tip_groups = 0;
+  std::vector<int> fold_of_group;
+  double rms_window_s = 0.0;  ///< residuals averaged over this before an RMS
+  int folds = 1;
+  Eigen::Vector2d noise_sd_rad{1e-3, 1e-3};  ///< measurement noise of the residual
+};
+
+/// An effect with its parameters, as part of a model.
+struct Term {
+  std::shared_ptr<const EffectModel> effect;
+  std::vector<double> parameters;
+  std::string name;
+};
+
+/// The model the diagnosis compares: the parameters' bias (already removed
+/// from Sample::state), compliance and dead-zone backlash, plus effect terms.
+class BaseModel {
+ public:
+  explicit BaseModel(const models::ModelParameters& parameters);
+
+  /// Encoder minus tip angle the model predicts, given the external torque.
+  template <typename T>
+  models::Vec2<T> BaseDeflection(const models::JointState<T>& state) const {
+    std::array<T, 8> law;
+    for (int i = 0; i < 8; ++i) law[i] = T(compliance_values_[i]);
+    const T backlash[4] = {T(deadzone_values_[0]), T(deadzone_values_[1]),
+                           T(deadzone_values_[2]), T(deadzone_values_[3])};
+    return compliance_(law.data(), state) + deadzone_(backlash, state);
+  }
+  double clearance_load_nm(int joint) const { return clearance_load_nm_[joint]; }
+  const models::ModelParameters& parameters() const { return parameters_; }
+
+ private:
+  models::ModelParameters parameters_;
+  models::ComplianceEffect compliance_;
+  models::BacklashDeadZoneEffect deadzone_;
+  std::vector<double> compliance_values_;
+  double deadzone_values_[4];
+  double clearance_load_nm_[2];
+};
+
+/// Encoder − reference − predicted deflection (rad) of one sample with
+/// `terms` in the model, their parameters at `values[i]` (T = double or
+/// EffectJet). Internal-torque terms change the external torque the
+/// deflection sees; deflection terms add to it.
+template <typename T>
+models::Vec2<T> ModelResidual(const Sample& sample, const BaseModel& model,
+                              const std::vector<Term>& terms, const std::vector<const T*>& values) {
+  models::JointState<T> state = sample.state.Cast<T>();
+  for (std::size_t i = 0; i < terms.size(); ++i) {
+    if (terms[i].effect->Info().channel == models::Channel::kInternalTorque)
+      state.external_torque_nm -= terms[i].effect->Evaluate(values[i], state);
+  }
+  models::Vec2<T> deflection = model.BaseDeflection(state);
+  for (std::size_t i = 0; i < terms.size(); ++i) {
+    if (terms[i].effect->Info().channel == models::Channel::kDeflection)
+      deflection += terms[i].effect->Evaluate(values[i], state);
+  }
+  models::Vec2<T> residual;
+  for (int j = 0; j < 2; ++j) {
+    residual[j] = T(sample.state.encoder_angle_rad[j] - sample.reference_rad[j]) - deflection[j];
+  }
+  return residual;
+}
+
+/// Residual (encoder − tip − predicted deflection) of every sample, rad, with
+/// `terms` in the model. Under tip_fixed the per-group mean is removed (the
+/// tip angle profiled out, over the samples of the groups in `only`, when
+/// given). Entries of unused joints are 0.
+std::vector<Eigen::Vector2d> Residuals(const Problem& problem, const BaseModel& model,
+                                       const std::vector<Term>& terms,
+                                       const std::vector<bool>* only = nullptr);
+
+/// Under tip_fixed, removes each tip group's mean per joint, computed over the
+/// samples of the CV groups in `only` (all when null) and removed from them.
+void ProfileGroups(const Problem& problem, std::vector<Eigen::Vector2d>& residual,
+                   const std::vector<bool>* only = nullptr);
+
+/// Builds the problem from a log. Throws io::InputError when there is no
+/// reference (no tip_fixed rows, no q*_ref / q*_true columns).
+Problem BuildProblem(const io::Log& log, const std::string& log_path, const BaseModel& model,
+                     const std::vector<Term>& added, const DiagnoseOptions& options);
+
+/// Tip RMS (mm) of residuals over the samples where `keep(group)`, in the
+/// sense of sqrt(mean e1² + mean e2²) over each joint's used samples, each
+/// joint's residual first averaged over consecutive windows of
+/// Problem::rms_window_s (the model's error, with the sensors' white noise
+/// averaged out).
+double TipRmsMm(const Problem& problem, const std::vector<Eigen::Vector2d>& residual,
+                const std::vector<bool>* keep_group = nullptr);
+
+// --- statistics ---------------------------------------------------------------
+/// Lag-1 autocorrelation of a series cut into runs (a new run where `run`
+/// changes); the AR(1) effective-size factor (1 − ρ)/(1 + ρ), in [1/n, 1].
+double EffectiveSizeFactor(const std::vector<double>& x, const std::vector<int>& run);
+struct TestResult {
+  double statistic = 0.0;
+  double p_value = 1.0;
+};
+TestResult LjungBox(const std::vector<double>& x, int lags);
+TestResult JarqueBera(const std::vector<double>& x);
+/// Upper tail of F(d1, d2) at f.
+double FUpperTail(double f, double d1, double d2);
+/// Holm's step-down adjustment, in place.
+void HolmAdjust(std::vector<double>& p_values);
+/// Two-sided 95 % band of a mean of χ²/dof over `dof` degrees of freedom.
+std::array<double, 2> ChiSquaredMeanBand(double dof);
+
+// --- fitting -------------------------------------------------------------------
+struct FitResult {
+  std::vector<std::vector<double>> parameters;  ///< per fitted term
+  std::vector<std::vector<double>> parameter_sd;
+  bool covariance_ok = false;
+  Eigen::MatrixXd covariance;  ///< over all fitted parameters, term by term
+};
+
+/// Least squares of the standardised residual over the samples of groups
+/// where `train_group`, with `fixed` terms in the model and `fitted` terms'
+/// parameters free (bounds and Gaussian priors of their ParameterSpecs).
+/// Covariance (when `covariance`) is scaled by 1/effective-size factor.
+FitResult FitTerms(const Problem& problem, const BaseModel& model, const std::vector<Term>& fixed,
+                   const std::vector<Term>& fitted, const std::vector<bool>& train_group,
+                   bool covariance, double size_factor);
+
+/// The largest tip displacement (mm) an effect term contributes over the
+/// samples, and its standard deviation by the delta method.
+std::array<double, 2> ContributionSizeMm(const Problem& problem, const BaseModel& model,
+                                         const std::vector<Term>& fixed, const Term& term,
+                                         const Eigen::MatrixXd& covariance);
+
+// --- channels ------------------------------------------------------------------
+std::vector<ChannelFinding> RankChannels(const io::Log& log, const Problem& problem,
+                                         const std::vector<Eigen::Vector2d>& residual,
+                                         const DiagnoseOptions& options);
+
+}  // namespace pliant::estimation::diagnosis
