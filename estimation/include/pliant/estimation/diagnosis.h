@@ -46,7 +46,7 @@ struct DiagnoseOptions {
   std::size_t max_samples = 6000;
   /// An effect is called missing only if it also cuts the held-out RMS by
   /// at least this fraction.
-  double min_heldout_reduction = 0.2;
+  double min_heldout_reduction = 0.3;
   /// RMS errors are of the residual averaged over windows this long (s):
   /// the model's error, with the sensors' white noise averaged out. 0: per sample.
   double rms_window_s = 0.05;

@@ -1,0 +1,64 @@
+// How often does `pliant diagnose` call an effect missing when none is?
+// (issue 6, "on data with no hidden effect, no candidate is declared missing
+// in at least 95 % of seeds"). Simulates the short divot log of the
+// diagnosis tests (tests/diagnostics/diagnosis_support.h) with no hidden
+// effect for N seeds, diagnoses each with the truth's model, and counts the
+// seeds with a missing effect; with --hidden NAME='{json}' it measures the
+// detection rate of that effect instead.
+//
+//   build/bench/diagnose_false_alarm_bench [--seeds 40] [--hidden 'NAME={"p":v}']
+//
+// Not a Google Benchmark: a statistical study, run by hand (docs/diagnose-method.md).
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <map>
+#include <string>
+
+#include <boost/math/distributions/beta.hpp>
+
+#include "../tests/diagnostics/diagnosis_support.h"
+#include "pliant/estimation/diagnosis.h"
+
+int main(int argc, char** argv) {
+  int seeds = 40;
+  std::string hidden = "{}", expected;
+  for (int i = 1; i + 1 < argc; i += 2) {
+    if (!std::strcmp(argv[i], "--seeds")) seeds = std::atoi(argv[i + 1]);
+    if (!std::strcmp(argv[i], "--hidden")) {
+      const std::string arg = argv[i + 1];
+      const auto eq = arg.find('=');
+      expected = arg.substr(0, eq);
+      hidden = "{\"" + expected + "\":" + arg.substr(eq + 1) + "}";
+    }
+  }
+  const auto scenario = pliant::testing::ShortDivot(hidden);
+  const auto model = pliant::testing::ModelOf(scenario);
+  int called = 0, right = 0;
+  std::map<std::string, int> best_counts;
+  double worst_score = -1.0;
+  for (int run = 0; run < seeds; ++run) {
+    const auto log = pliant::experiments::Simulate(scenario, 1000 + run).log;
+    const auto d = pliant::estimation::Diagnose(log, "divot.csv", model, {});
+    const auto& best = d.effects.front();
+    ++best_counts[best.name];
+    worst_score = std::max(worst_score, best.score);
+    called += d.missing_effect.has_value();
+    right += d.missing_effect && *d.missing_effect == expected;
+    std::printf("seed %4d  best %-26s held-out reduction %+.3f  p %.2g  rms %.4f -> %.4f mm  missing %s\n",
+                1000 + run, best.name.c_str(), best.score, best.p_value, d.rms_before_mm,
+                best.heldout_rms_after_mm, d.missing_effect ? d.missing_effect->c_str() : "none");
+  }
+  // Clopper–Pearson 95 % interval of the rate.
+  using boost::math::beta_distribution;
+  const double n = seeds, k = expected.empty() ? called : right;
+  const double lower = k > 0 ? boost::math::quantile(beta_distribution<>(k, n - k + 1), 0.025) : 0.0;
+  const double upper = k < n ? boost::math::quantile(beta_distribution<>(k + 1, n - k), 0.975) : 1.0;
+  std::printf("\n%s: %d of %d seeds (%.1f %%, 95 %% interval %.1f-%.1f %%)\n",
+              expected.empty() ? "false alarms (an effect called missing, none hidden)"
+                               : ("detections of " + expected).c_str(),
+              int(k), seeds, 100.0 * k / n, 100.0 * lower, 100.0 * upper);
+  std::printf("largest held-out reduction of the best candidate: %.3f\n", worst_score);
+  for (const auto& [name, count] : best_counts) std::printf("  best %-26s %d seeds\n", name.c_str(), count);
+  return 0;
+}
