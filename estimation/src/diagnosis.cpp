@@ -151,7 +151,7 @@ EffectFinding Evaluate(const Problem& problem, const diagnosis::BaseModel& model
 
 std::vector<std::string> ChannelsOf(const EffectModel& effect) {
   if (effect.Info().channel == models::Channel::kDeflection) return {"q1", "q2", "q3", "tau1", "tau2"};
-  return {"q1", "q2", "q3", "tau1", "tau2", "v1", "v2", "t"};
+  return {"q1", "q2", "q3", "tau1", "tau2", "v1", "v2", "t", "dtau1/dt", "dtau2/dt"};
 }
 
 }  // namespace
