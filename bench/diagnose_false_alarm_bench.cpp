@@ -6,7 +6,9 @@
 // seeds with a missing effect; with --hidden NAME='{json}' it measures the
 // detection rate of that effect instead.
 //
-//   build/bench/diagnose_false_alarm_bench [--seeds 40] [--hidden 'NAME={"p":v}']
+//   build/bench/diagnose_false_alarm_bench [--seeds 40] [--hidden 'NAME={"p":v}'] [--tip-fixed]
+//
+// --tip-fixed: no tracker in the log; the reference is the held tip.
 //
 // Not a Google Benchmark: a statistical study, run by hand (docs/diagnose-method.md).
 #include <cstdio>
@@ -23,7 +25,9 @@
 int main(int argc, char** argv) {
   int seeds = 40;
   std::string hidden = "{}", expected;
-  for (int i = 1; i + 1 < argc; i += 2) {
+  bool tip_fixed = false;
+  for (int i = 1; i < argc; ++i) tip_fixed |= !std::strcmp(argv[i], "--tip-fixed");
+  for (int i = 1; i + 1 < argc; ++i) {
     if (!std::strcmp(argv[i], "--seeds")) seeds = std::atoi(argv[i + 1]);
     if (!std::strcmp(argv[i], "--hidden")) {
       const std::string arg = argv[i + 1];
@@ -32,7 +36,8 @@ int main(int argc, char** argv) {
       hidden = "{\"" + expected + "\":" + arg.substr(eq + 1) + "}";
     }
   }
-  const auto scenario = pliant::testing::ShortDivot(hidden);
+  const auto scenario = pliant::testing::ShortDivot(
+      hidden, {tip_fixed ? "sensors.tracker=false" : "sensors.tracker=true"});
   const auto model = pliant::testing::ModelOf(scenario);
   int called = 0, right = 0;
   std::map<std::string, int> best_counts;

@@ -45,18 +45,22 @@ double SumOfSquares(const std::vector<double>& x) {
   return s;
 }
 
-// Held-out residual: each fold's samples under parameters fitted on the others.
+// Held-out residual: each fold's samples under parameters fitted on the
+// others (none fitted: the model as it is, profiled the same way, so that
+// before and after are compared alike).
 Residual CrossValidated(const Problem& problem, const diagnosis::BaseModel& model,
                         const std::vector<Term>& fixed, const std::vector<Term>& fitted) {
   Residual heldout(problem.samples.size(), Eigen::Vector2d::Zero());
   for (int fold = 0; fold < problem.folds; ++fold) {
     std::vector<bool> train(problem.groups);
     for (int g = 0; g < problem.groups; ++g) train[g] = problem.fold_of_group[g] != fold;
-    const auto fit = diagnosis::FitTerms(problem, model, fixed, fitted, train, false, 1.0);
     std::vector<Term> terms = fixed;
-    for (std::size_t t = 0; t < fitted.size(); ++t) {
-      terms.push_back(fitted[t]);
-      terms.back().parameters = fit.parameters[t];
+    if (!fitted.empty()) {
+      const auto fit = diagnosis::FitTerms(problem, model, fixed, fitted, train, false, 1.0);
+      for (std::size_t t = 0; t < fitted.size(); ++t) {
+        terms.push_back(fitted[t]);
+        terms.back().parameters = fit.parameters[t];
+      }
     }
     std::vector<bool> test(problem.groups);
     for (int g = 0; g < problem.groups; ++g) test[g] = !train[g];
@@ -192,7 +196,7 @@ Diagnosis Diagnose(const io::Log& log, const std::string& log_path,
   d.added_effects = options.added_effects;
 
   const Residual before = diagnosis::Residuals(problem, model, {});
-  d.rms_before_mm = diagnosis::TipRmsMm(problem, before);
+  d.rms_before_mm = diagnosis::TipRmsMm(problem, CrossValidated(problem, model, {}, {}));
   std::vector<Term> fixed;
   Residual after = before;
   if (!added.empty()) {
@@ -203,7 +207,8 @@ Diagnosis Diagnose(const io::Log& log, const std::string& log_path,
     after = diagnosis::Residuals(problem, model, fixed);
   }
   const Residual baseline = fixed.empty() ? before : after;
-  const double baseline_rms = diagnosis::TipRmsMm(problem, baseline);
+  const double baseline_rms =
+      fixed.empty() ? d.rms_before_mm : diagnosis::TipRmsMm(problem, CrossValidated(problem, model, fixed, {}));
 
   for (const auto& name : names) {
     if (std::find(options.added_effects.begin(), options.added_effects.end(), name) !=

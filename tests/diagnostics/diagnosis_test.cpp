@@ -104,5 +104,27 @@ TEST(Diagnose, NothingHiddenNothingMissing) {
   }
 }
 
+// Without a tracker the reference is the held tip: one unknown tip angle per
+// run of tip_fixed rows (here one per depth), profiled out. Effects that vary
+// within a hold stay visible; those constant over a run (a depth or a
+// cross-joint offset) are absorbed by the tip angle and cannot be found.
+TEST(Diagnose, TipFixedReferenceFindsEffectsThatVaryWithinAHold) {
+  for (const auto& [name, parameters] : std::vector<std::pair<std::string, std::string>>{
+           {"joint_friction", R"({"coulomb1":0.05,"coulomb2":0.05})"},
+           {"load_dependent_compliance", R"({"gamma1":0.004,"gamma2":0.004})"},
+           {"backlash_depth", R"({"growth1":0.05,"growth2":0.05})"}}) {
+    const auto scenario = ShortDivot("{\"" + name + "\":" + parameters + "}", {"sensors.tracker=false"});
+    const auto simulated = experiments::Simulate(scenario, 21);
+    estimation::DiagnoseOptions options;
+    options.reference = "tip_fixed";
+    const Diagnosis d = Diagnose(simulated.log, "divot.csv", ModelOf(scenario), options);
+    std::printf("%s (tip_fixed):\n", name.c_str());
+    Print(d);
+    EXPECT_EQ(d.reference, "tip_fixed");
+    EXPECT_EQ(d.effects.front().name, name);
+    EXPECT_EQ(d.missing_effect.value_or("none"), name);
+  }
+}
+
 }  // namespace
 }  // namespace pliant::testing
