@@ -8,6 +8,7 @@
 
 #include "diagnosis_internal.h"
 #include "pliant/estimation/filter_log.h"
+#include "pliant/estimation/jacobian_check.h"
 #include "pliant/io/input_error.h"
 
 namespace pliant::estimation {
@@ -153,9 +154,35 @@ EffectFinding Evaluate(const Problem& problem, const diagnosis::BaseModel& model
   return f;
 }
 
+// The log channels an effect reads: the inputs of the joint state its
+// contribution has a derivative with respect to (parameters moved one prior
+// sd off their defaults, at a light and a heavy load), in the log's names.
 std::vector<std::string> ChannelsOf(const EffectModel& effect) {
-  if (effect.Info().channel == models::Channel::kDeflection) return {"q1", "q2", "q3", "tau1", "tau2"};
-  return {"q1", "q2", "q3", "tau1", "tau2", "v1", "v2", "t", "dtau1/dt", "dtau2/dt"};
+  static const char* kLogName[models::kJointStateSize] = {
+      "q1", "q2", "q3", "tau1", "tau2", "v1", "v2", "t", "dtau1/dt", "dtau2/dt"};
+  std::vector<double> parameters;
+  for (const auto& spec : effect.Parameters()) {
+    const double moved = spec.default_value + spec.prior_sd;
+    parameters.push_back(moved <= spec.upper_bound ? moved : spec.default_value - spec.prior_sd);
+  }
+  std::vector<bool> used(models::kJointStateSize, false);
+  for (double load : {0.04, 0.7}) {
+    models::JointState<double> state;
+    state.encoder_angle_rad << 0.31, -0.27;
+    state.insertion_depth_m = 0.143;
+    state.external_torque_nm << load, -1.3 * load;
+    state.velocity_rad_s << 0.02, -0.01;
+    state.time_s = 12.5;
+    state.effort_rate_nm_s << 0.4, -0.7;
+    const auto check = CheckEffectJacobians(effect, parameters, state);
+    for (int k = 0; k < models::kJointStateSize; ++k)
+      used[k] = used[k] || check.autodiff.col(Eigen::Index(parameters.size()) + k).cwiseAbs().maxCoeff() > 0.0;
+  }
+  std::vector<std::string> channels;
+  for (int k = 0; k < models::kJointStateSize; ++k) {
+    if (used[k]) channels.push_back(kLogName[k]);
+  }
+  return channels;
 }
 
 }  // namespace
