@@ -242,6 +242,7 @@ Diagnosis Diagnose(const io::Log& log, const std::string& log_path,
         options.added_effects.end())
       continue;
     const Term candidate = MakeTerm(name);
+    if (candidate.parameters.empty()) continue;  // nothing to fit: no size, no test
     EffectFinding f = Evaluate(problem, model, fixed, candidate, baseline, baseline_rms);
     f.channels = ChannelsOf(*candidate.effect);
     d.effects.push_back(std::move(f));
