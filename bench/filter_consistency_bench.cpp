@@ -7,7 +7,7 @@
 //   build/bench/filter_consistency_bench [--runs 200] [--every 150] [--paper-bias]
 //       [--effort-noise NM] [--encoder-noise RAD] [--torque-rate NM_S]
 //       [--pinned-rate RAD_S] [--backlash-rate RAD_S] [--scale-sd SD] [--scale-rate R]
-//       [--scenario FILE] [--trace RUN]
+//       [--deadzone-width NM] [--width-multiple M] [--per-run] [--transit-noise F] [--deadzone-width NM] [--width-multiple M] [--per-run] [--transit-noise F] [--inertia KG_M2] [--accel-time S] [--scenario FILE] [--trace RUN]
 //
 // Each run: experiments/scenarios/divot.json with hidden_effects={}, one depth
 // (0.10 / 0.15 / 0.20 m), one push direction (the 8 of the scenario), one peak
@@ -94,7 +94,7 @@ int Usage() {
   std::fprintf(stderr,
                "usage: filter_consistency_bench [--runs N] [--every K] [--paper-bias] "
                "[--effort-noise NM] [--encoder-noise RAD] [--torque-rate NM_S] "
-               "[--pinned-rate RAD_S] [--backlash-rate RAD_S] [--scale-sd SD] [--scale-rate PER_S] [--scenario FILE] [--trace RUN]\n");
+               "[--pinned-rate RAD_S] [--backlash-rate RAD_S] [--scale-sd SD] [--scale-rate PER_S] [--deadzone-width NM] [--width-multiple M] [--per-run] [--transit-noise F] [--inertia KG_M2] [--accel-time S] [--scenario FILE] [--trace RUN]\n");
   return 2;
 }
 
@@ -104,6 +104,9 @@ int main(int argc, char** argv) {
   int runs = 200, every = 150;
   bool paper_bias = false;
   int trace = -1;
+  bool per_run = false;
+  double deadzone_width = -1.0;
+  bool inertia_given = false;
   std::string scenario_path = PLIANT_SOURCE_DIR "/experiments/scenarios/divot.json";
   estimation::FilterOptions options;
   for (int i = 1; i < argc; ++i) {
@@ -131,6 +134,19 @@ int main(int argc, char** argv) {
       options.compliance_scale_rate = std::atof(argv[++i]);
     } else if (a == "--scale-sd" && has) {
       options.compliance_scale_sd = std::atof(argv[++i]);
+    } else if (a == "--deadzone-width" && has) {  // replaces paper.json's, N·m
+      deadzone_width = std::atof(argv[++i]);
+    } else if (a == "--per-run") {
+      per_run = true;
+    } else if (a == "--width-multiple" && has) {
+      options.backlash_width_noise_multiple = std::atof(argv[++i]);
+    } else if (a == "--transit-noise" && has) {
+      options.backlash_transit_noise = std::atof(argv[++i]);
+    } else if (a == "--inertia" && has) {
+      options.motor_inertia_kg_m2 = std::atof(argv[++i]);
+      inertia_given = true;
+    } else if (a == "--accel-time" && has) {
+      options.acceleration_filter_time_s = std::atof(argv[++i]);
     } else if (a == "--scenario" && has) {
       scenario_path = argv[++i];
     } else {
@@ -171,11 +187,17 @@ int main(int argc, char** argv) {
           for (double& v : parameters.joints[j].bias_torque.torque_nm) v += shift;
         }
       }
+      if (deadzone_width > 0.0) {
+        for (auto& joint : parameters.joints) joint.deadzone_width_nm = deadzone_width;
+      }
+      // The arm's motor inertia is the truth's, as the bias is.
+      if (!inertia_given) options.motor_inertia_kg_m2 = scenario.joint.inertia_kg_m2[0];
       estimation::ComplianceFilter filter(parameters, options);
       const io::StandardColumns c(log.header);
       const std::size_t rows = log.Rows(), cols = log.Columns();
       rows_total += long(rows);
       const std::size_t chosen = std::uniform_int_distribution<std::size_t>(0, rows - 1)(pick);
+      Tally run_held;
       for (std::size_t r = 0; r < rows; ++r) {
         const double* v = &log.values[r * cols];
         const auto s = estimation::SampleFromRow(c, v);
@@ -194,8 +216,15 @@ int main(int argc, char** argv) {
                       e.backlash_offset_rad[1] / k, e.compliance_scale[0], e.compliance_scale[1],
                       e.flags);
         }
+        if (s.tip_fixed) run_held.Add(error, e.covariance_rad2);
         all.Add(error, e.covariance_rad2);
         (s.tip_fixed ? held : free_tip).Add(error, e.covariance_rad2);
+      }
+      if (per_run) {  // which runs carry the NEES (tuning)
+        std::printf("run %3d depth %.2f dir %3d peak %.1f speed %.2f: held NEES %7.2f max %7.1f  "
+                    "coverage %5.1f %% %5.1f %%\n", run, depth, direction, torque, speed,
+                    run_held.Mean(), run_held.max_nees, 100.0 * run_held.covered[0] / run_held.n,
+                    100.0 * run_held.covered[1] / run_held.n);
       }
     }
     std::printf("filter consistency on the CVODE simulator: %d divot runs (seeds 1000..%d, hidden "
