@@ -201,8 +201,11 @@ class DenseEkf {
                           motion_[j].InertialTorque(o) - z[2 + j].a;
     }
     typename Types::M44 r = Types::M44::Zero(4, 4);
-    r(0, 0) = r(1, 1) = o.encoder_noise_rad * o.encoder_noise_rad;
-    r(2, 2) = r(3, 3) = o.effort_noise_nm * o.effort_noise_nm;
+    for (int j = 0; j < 2; ++j) {
+      const double deflection = o.deflection_model_error * h(j, 4 * j + 3);  // error × K·tau
+      r(j, j) = o.encoder_noise_rad * o.encoder_noise_rad + deflection * deflection;
+      r(2 + j, 2 + j) = o.effort_noise_nm * o.effort_noise_nm + motion_[j].EffortModelVariance(o);
+    }
     const typename Types::M84 ph = p_ * h.transpose();
     const typename Types::M44 innovation_cov = h * ph + r;
     const typename Types::M84 gain = innovation_cov.ldlt().solve(ph.transpose()).transpose();

@@ -7,7 +7,7 @@
 //   build/bench/filter_consistency_bench [--runs 200] [--every 150] [--paper-bias]
 //       [--effort-noise NM] [--encoder-noise RAD] [--torque-rate NM_S]
 //       [--pinned-rate RAD_S] [--backlash-rate RAD_S] [--scale-sd SD] [--scale-rate R]
-//       [--deadzone-width NM] [--width-multiple M] [--per-run] [--transit-noise F] [--deadzone-width NM] [--width-multiple M] [--per-run] [--transit-noise F] [--inertia KG_M2] [--accel-time S] [--scenario FILE] [--trace RUN]
+//       [--inertial-error F] [--damping-sd NM_S] [--inertial-error F] [--damping-sd NM_S] [--deadzone-width NM] [--width-multiple M] [--per-run] [--transit-noise F] [--inertial-error F] [--damping-sd NM_S] [--deadzone-width NM] [--width-multiple M] [--per-run] [--transit-noise F] [--inertia KG_M2] [--accel-time S] [--scenario FILE] [--trace RUN]
 //
 // Each run: experiments/scenarios/divot.json with hidden_effects={}, one depth
 // (0.10 / 0.15 / 0.20 m), one push direction (the 8 of the scenario), one peak
@@ -49,6 +49,7 @@
 #include "pliant/experiments/simulator.h"
 #include "pliant/io/log.h"
 #include "pliant/io/parameters_json.h"
+#include "pliant/models/parameters.h"
 
 namespace {
 
@@ -94,7 +95,7 @@ int Usage() {
   std::fprintf(stderr,
                "usage: filter_consistency_bench [--runs N] [--every K] [--paper-bias] "
                "[--effort-noise NM] [--encoder-noise RAD] [--torque-rate NM_S] "
-               "[--pinned-rate RAD_S] [--backlash-rate RAD_S] [--scale-sd SD] [--scale-rate PER_S] [--deadzone-width NM] [--width-multiple M] [--per-run] [--transit-noise F] [--inertia KG_M2] [--accel-time S] [--scenario FILE] [--trace RUN]\n");
+               "[--pinned-rate RAD_S] [--backlash-rate RAD_S] [--scale-sd SD] [--scale-rate PER_S] [--inertial-error F] [--damping-sd NM_S] [--deadzone-width NM] [--width-multiple M] [--per-run] [--transit-noise F] [--inertia KG_M2] [--accel-time S] [--scenario FILE] [--trace RUN]\n");
   return 2;
 }
 
@@ -107,6 +108,7 @@ int main(int argc, char** argv) {
   bool per_run = false;
   double deadzone_width = -1.0;
   bool inertia_given = false;
+  int first_seed = 1000;
   std::string scenario_path = PLIANT_SOURCE_DIR "/experiments/scenarios/divot.json";
   estimation::FilterOptions options;
   for (int i = 1; i < argc; ++i) {
@@ -136,6 +138,14 @@ int main(int argc, char** argv) {
       options.compliance_scale_sd = std::atof(argv[++i]);
     } else if (a == "--deadzone-width" && has) {  // replaces paper.json's, N·m
       deadzone_width = std::atof(argv[++i]);
+    } else if (a == "--inertial-error" && has) {
+      options.inertial_torque_error = std::atof(argv[++i]);
+    } else if (a == "--damping-sd" && has) {
+      options.unmodelled_damping_nm_s_per_rad = std::atof(argv[++i]);
+    } else if (a == "--deflection-error" && has) {
+      options.deflection_model_error = std::atof(argv[++i]);
+    } else if (a == "--first-seed" && has) {  // fresh seeds: an out-of-sample check
+      first_seed = std::atoi(argv[++i]);
     } else if (a == "--per-run") {
       per_run = true;
     } else if (a == "--width-multiple" && has) {
@@ -174,7 +184,7 @@ int main(int argc, char** argv) {
       std::snprintf(buffer[3], sizeof buffer[3], "experiment.speeds_rad_s=[%g]", speed);
       const auto scenario = experiments::ReadScenario(
           scenario_path, {"hidden_effects={}", buffer[0], buffer[1], buffer[2], buffer[3]});
-      const auto result = experiments::Simulate(scenario, 1000 + run);
+      const auto result = experiments::Simulate(scenario, first_seed + run);
       const io::Log& log = result.log;
 
       models::ModelParameters parameters = paper;
@@ -215,6 +225,16 @@ int main(int argc, char** argv) {
                       e.external_torque_nm[0], e.external_torque_nm[1], e.backlash_offset_rad[0] / k,
                       e.backlash_offset_rad[1] / k, e.compliance_scale[0], e.compliance_scale[1],
                       e.flags);
+          // The load the truth's deflection implies, beyond the clearance: what tau should be.
+          for (int j = 0; j < 2; ++j) {
+            const double d = (j ? v[c.q2] - v[c.q2_true] : v[c.q1] - v[c.q1_true]);
+            const double delta = parameters.joints[j].backlash_rad;
+            const double elastic = std::abs(d) > delta ? d - std::copysign(delta, d) : 0.0;
+            std::printf("    j%d tau from deflection %.4f, filter tau - it %.4f N·m\n", j + 1,
+                        elastic / models::ComplianceAt(parameters.joints[j], depth),
+                        e.external_torque_nm[j] -
+                            elastic / models::ComplianceAt(parameters.joints[j], depth));
+          }
         }
         if (s.tip_fixed) run_held.Add(error, e.covariance_rad2);
         all.Add(error, e.covariance_rad2);
@@ -227,9 +247,9 @@ int main(int argc, char** argv) {
                     100.0 * run_held.covered[1] / run_held.n);
       }
     }
-    std::printf("filter consistency on the CVODE simulator: %d divot runs (seeds 1000..%d, hidden "
+    std::printf("filter consistency on the CVODE simulator: %d divot runs (seeds %d..%d, hidden "
                 "effects off), %ld rows, bias %s\n",
-                runs, 1000 + runs - 1, rows_total,
+                first_seed, first_seed + runs - 1, rows_total,
                 paper_bias ? "of data/paper.json" : "of the truth");
     std::printf("  options: effort %.4g N·m, encoder %.4g rad, torque rate %.4g N·m/√s, pinned "
                 "%.4g rad/√s, backlash %.4g rad/√s\n",

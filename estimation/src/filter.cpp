@@ -111,6 +111,12 @@ double MotorMotion::InertialTorque(const FilterOptions& o) const {
                     o.effort_limit_nm);
 }
 
+double MotorMotion::EffortModelVariance(const FilterOptions& o) const {
+  const double inertial = o.inertial_torque_error * InertialTorque(o);
+  const double damping = o.unmodelled_damping_nm_s_per_rad * velocity_rad_s;
+  return inertial * inertial + damping * damping;
+}
+
 struct ComplianceFilter::Impl {
   Impl(const models::ModelParameters& p, const FilterOptions& o);
 
@@ -448,7 +454,9 @@ FilterEstimate ComplianceFilter::Impl::Step(const FilterSample& sample) {
     const double tau0 = models::BiasTorqueAt(parameters.joints[j], q, depth);
     ScalarUpdate(j, kEffortChannel, Eigen::Vector4d::Unit(kTorque),
                  effort - tau0 - motion[j].InertialTorque(options) - joint[j].mean[kTorque],
-                 options.effort_noise_nm * options.effort_noise_nm, &tally);
+                 options.effort_noise_nm * options.effort_noise_nm +
+                     motion[j].EffortModelVariance(options),
+                 &tally);
   }
   // Encoders, linearised at the state the efforts just updated.
   Eigen::Vector2d predicted;
@@ -459,8 +467,10 @@ FilterEstimate ComplianceFilter::Impl::Step(const FilterSample& sample) {
       tally.flags |= kFlagMissing;
       continue;
     }
+    const double deflection = options.deflection_model_error * h[j][kScale];
     ScalarUpdate(j, kEncoderChannel, h[j], sample.encoder_rad[j] - predicted[j],
-                 options.encoder_noise_rad * options.encoder_noise_rad, &tally,
+                 options.encoder_noise_rad * options.encoder_noise_rad + deflection * deflection,
+                 &tally,
                  implausible_jump[j] && !sample.tip_fixed);
   }
   for (int j = 0; j < 2; ++j) {

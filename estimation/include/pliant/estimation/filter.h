@@ -66,7 +66,7 @@ struct FilterOptions {
   /// that meets its wall at a load the model cannot place inside w; the pull
   /// gets variance this × g·(1 − g)·δ²/3 per sample (0 at no load and on the
   /// wall).
-  double backlash_transit_noise = 3.0;
+  double backlash_transit_noise = 10.0;
   double compliance_scale_rate = 0.0;     ///< σ_ṡ, 1/√s
   /// σ_free, rad/√s, tip not fixed. Large on purpose: a free tip is wherever
   /// the encoder puts it (less the deflection), and the prior of compliance and
@@ -82,6 +82,14 @@ struct FilterOptions {
   /// arm (experiments JointDynamics) has 0.08.
   double motor_inertia_kg_m2 = 0.0;
   double acceleration_filter_time_s = 0.01;
+  /// Model error of the load read from the effort while the motor moves, as
+  /// extra effort variance: (this × J·θ̈)² for the inertial torque's error
+  /// (the acceleration is estimated, late by about 2T), plus (σ_c·θ̇)² for a
+  /// damping the model does not have (shaft, joint friction), σ_c in N·m·s/rad.
+  double inertial_torque_error = 0.0;
+  double unmodelled_damping_nm_s_per_rad = 0.0;
+  /// Relative error of the deflection model, as encoder variance (this × K·tau)².
+  double deflection_model_error = 0.06;
   // Priors.
   double compliance_scale_sd = 0.1;       ///< s starts at 1 ± this
   double initial_torque_sd_nm = 1.0;
@@ -205,6 +213,8 @@ struct MotorMotion {
   /// than its largest effort can drive it, and an encoder outlier must not
   /// become a large torque.
   double InertialTorque(const FilterOptions& options) const;
+  /// The variance this motion adds to the effort as a measurement of the load.
+  double EffortModelVariance(const FilterOptions& options) const;
 };
 
 /// The output quantities of a joint-block pair, computed the same way for the
