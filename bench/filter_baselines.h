@@ -198,7 +198,7 @@ class DenseEkf {
     for (int j = 0; j < 2; ++j) {
       innovation[j] = s.encoder_rad[j] - z[j].a;
       innovation[2 + j] = s.effort_nm[j] - model_.Bias(j, s.encoder_rad[j], s.insertion_depth_m) -
-                          motion_[j].InertialTorque(o) - z[2 + j].a;
+                          (s.tip_fixed ? motion_[j].InertialTorque(o) : 0.0) - z[2 + j].a;
     }
     typename Types::M44 r = Types::M44::Zero(4, 4);
     for (int j = 0; j < 2; ++j) {

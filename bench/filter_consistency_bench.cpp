@@ -7,7 +7,12 @@
 //   build/bench/filter_consistency_bench [--runs 200] [--every 150] [--paper-bias]
 //       [--effort-noise NM] [--encoder-noise RAD] [--torque-rate NM_S]
 //       [--pinned-rate RAD_S] [--backlash-rate RAD_S] [--scale-sd SD] [--scale-rate R]
-//       [--inertial-error F] [--damping-sd NM_S] [--inertial-error F] [--damping-sd NM_S] [--deadzone-width NM] [--width-multiple M] [--per-run] [--transit-noise F] [--inertial-error F] [--damping-sd NM_S] [--deadzone-width NM] [--width-multiple M] [--per-run] [--transit-noise F] [--inertia KG_M2] [--accel-time S] [--scenario FILE] [--trace RUN]
+//       [--transit-noise F] [--deflection-error E] [--inertial-error F] [--damping-sd NM_S]
+//       [--inertia KG_M2] [--accel-time S] [--deadzone-width NM] [--width-multiple M]
+//       [--first-seed N] [--per-run] [--scenario FILE] [--trace RUN]
+//
+// The motor inertia is the scenario's (JointDynamics) unless --inertia is given;
+// --first-seed checks the tuned options on seeds they were not tuned on.
 //
 // Each run: experiments/scenarios/divot.json with hidden_effects={}, one depth
 // (0.10 / 0.15 / 0.20 m), one push direction (the 8 of the scenario), one peak
@@ -95,7 +100,10 @@ int Usage() {
   std::fprintf(stderr,
                "usage: filter_consistency_bench [--runs N] [--every K] [--paper-bias] "
                "[--effort-noise NM] [--encoder-noise RAD] [--torque-rate NM_S] "
-               "[--pinned-rate RAD_S] [--backlash-rate RAD_S] [--scale-sd SD] [--scale-rate PER_S] [--inertial-error F] [--damping-sd NM_S] [--deadzone-width NM] [--width-multiple M] [--per-run] [--transit-noise F] [--inertia KG_M2] [--accel-time S] [--scenario FILE] [--trace RUN]\n");
+               "[--pinned-rate RAD_S] [--backlash-rate RAD_S] [--scale-sd SD] [--scale-rate PER_S] "
+               "[--transit-noise F] [--deflection-error E] [--inertial-error F] [--damping-sd NM_S] "
+               "[--inertia KG_M2] [--accel-time S] [--deadzone-width NM] [--width-multiple M] "
+               "[--first-seed N] [--per-run] [--scenario FILE] [--trace RUN]\n");
   return 2;
 }
 
@@ -249,13 +257,15 @@ int main(int argc, char** argv) {
     }
     std::printf("filter consistency on the CVODE simulator: %d divot runs (seeds %d..%d, hidden "
                 "effects off), %ld rows, bias %s\n",
-                first_seed, first_seed + runs - 1, rows_total,
+                runs, first_seed, first_seed + runs - 1, rows_total,
                 paper_bias ? "of data/paper.json" : "of the truth");
     std::printf("  options: effort %.4g N·m, encoder %.4g rad, torque rate %.4g N·m/√s, pinned "
-                "%.4g rad/√s, backlash %.4g rad/√s\n",
+                "%.4g rad/√s, backlash %.4g rad/√s, transit %.3g, deflection error %.3g, motor "
+                "inertia %.3g kg·m²\n",
                 options.effort_noise_nm, options.encoder_noise_rad,
                 options.external_torque_rate_nm, options.backlash_pinned_rate_rad,
-                options.backlash_rate_rad);
+                options.backlash_rate_rad, options.backlash_transit_noise,
+                options.deflection_model_error, options.motor_inertia_kg_m2);
     Print("one sample per run (independent)", one_per_run, true);
     std::printf("  every %d-th sample (band indicative only: the samples are correlated):\n",
                 every);

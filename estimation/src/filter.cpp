@@ -452,8 +452,14 @@ FilterEstimate ComplianceFilter::Impl::Step(const FilterSample& sample) {
     const double q = std::isfinite(sample.encoder_rad[j]) ? sample.encoder_rad[j]
                                                           : joint[j].mean[kTip];
     const double tau0 = models::BiasTorqueAt(parameters.joints[j], q, depth);
+    // The inertial torque, with the tip held only. With a free tip the load
+    // is ~0 and the effort serves to pin b; there the flicker of the estimated
+    // acceleration (one count ≈ 0.07 rad/s², 0.006 N·m) walked b across the
+    // clearance during the long free-tip rests of a divot log and moved the
+    // tip by δ (docs/validation.md, Part 4).
+    const double inertial = sample.tip_fixed ? motion[j].InertialTorque(options) : 0.0;
     ScalarUpdate(j, kEffortChannel, Eigen::Vector4d::Unit(kTorque),
-                 effort - tau0 - motion[j].InertialTorque(options) - joint[j].mean[kTorque],
+                 effort - tau0 - inertial - joint[j].mean[kTorque],
                  options.effort_noise_nm * options.effort_noise_nm +
                      motion[j].EffortModelVariance(options),
                  &tally);

@@ -16,12 +16,16 @@
 //   tau+   = tau + noise σ_τ̇²·dt            (random walk)
 //   b+     = BacklashHysteresisStep(b, tau, r)  (models/effects/backlash_hysteresis.h;
 //            r = 1 − e^(−dt/T) while the joint moves, 0 at rest: BacklashRelax)
-//            + noise ((1 − S(tau/w)²)·u + σ_pinned²·dt), variance ≤ δ²/3, with
-//            u = σ_b²·dt (tip held, r = 0) or (1 − (1 − r)²)·δ²/3 (tip free)
+//            + noise ((1 − g)·u + c·g·(1 − g)·δ²/3 + σ_pinned²·dt), variance ≤ δ²/3,
+//            g = S(tau/w)², u = σ_b²·dt (tip held, r = 0) or (1 − (1 − r)²)·δ²/3
+//            (tip free); c = backlash_transit_noise with the tip held, 0 free
+//            (BacklashProcessVariance)
 //   s+     = s + noise σ_ṡ²·dt
 // Measurements:
-//   q_enc_j  = q_tip_j + b_j + s_j·K_j(L)·tau_j   (ComplianceEffect)   σ_enc
-//   tau_meas_j − tau0_j(q_enc, L) = tau_j          (bias torque)        σ_effort
+//   q_enc_j  = q_tip_j + b_j + s_j·K_j(L)·tau_j   (ComplianceEffect)
+//            variance σ_enc² + (ε·K_j(L)·tau_j)², ε = deflection_model_error
+//   tau_meas_j − tau0_j(q_enc, L) − J·θ̈_j = tau_j  (bias torque; J·θ̈ with the
+//            tip held, MotorMotion)   variance σ_effort² + MotorMotion's model error
 //   q_ref_j  = q_tip_j                             (when the log has it) σ_ref
 // Jacobians come from ceres::Jet. The joints share no state and no
 // measurement while no coupling effect is on, so the filter runs two 4-state
@@ -75,9 +79,9 @@ struct FilterOptions {
   /// The filter's dead-zone width is max(w from the parameters, this × σ_effort).
   double backlash_width_noise_multiple = 10.0;
   /// Motor-side inertia J reflected at joints 1 and 2, kg·m². The effort
-  /// accelerates the motor as well as loading the shaft: the filter reads
-  /// tau_meas − tau0 − J·θ̈ as the load, θ̈ from the encoders through two
-  /// low-pass stages of this time constant. 0 (the default): the whole effort
+  /// accelerates the motor as well as loading the shaft: with the tip held the
+  /// filter reads tau_meas − tau0 − J·θ̈ as the load, θ̈ from the encoders
+  /// through two low-pass stages of this time constant. 0 (the default): the whole effort
   /// is load, right for logs drawn from the quasi-static model; the simulator's
   /// arm (experiments JointDynamics) has 0.08.
   double motor_inertia_kg_m2 = 0.0;
