@@ -204,7 +204,7 @@ class DenseEkf {
     for (int j = 0; j < 2; ++j) {
       const double deflection = o.deflection_model_error * h(j, 4 * j + 3);  // error × K·tau
       r(j, j) = o.encoder_noise_rad * o.encoder_noise_rad + deflection * deflection;
-      r(2 + j, 2 + j) = o.effort_noise_nm * o.effort_noise_nm + motion_[j].EffortModelVariance(o);
+      r(2 + j, 2 + j) = o.effort_noise_nm * o.effort_noise_nm;
     }
     const typename Types::M84 ph = p_ * h.transpose();
     const typename Types::M44 innovation_cov = h * ph + r;

@@ -7,7 +7,7 @@
 //   build/bench/filter_consistency_bench [--runs 200] [--every 150] [--paper-bias]
 //       [--effort-noise NM] [--encoder-noise RAD] [--torque-rate NM_S]
 //       [--pinned-rate RAD_S] [--backlash-rate RAD_S] [--scale-sd SD] [--scale-rate R]
-//       [--transit-noise F] [--deflection-error E] [--inertial-error F] [--damping-sd NM_S]
+//       [--transit-noise F] [--deflection-error E]
 //       [--inertia KG_M2] [--accel-time S] [--deadzone-width NM] [--width-multiple M]
 //       [--first-seed N] [--per-run] [--scenario FILE] [--trace RUN]
 //
@@ -101,7 +101,7 @@ int Usage() {
                "usage: filter_consistency_bench [--runs N] [--every K] [--paper-bias] "
                "[--effort-noise NM] [--encoder-noise RAD] [--torque-rate NM_S] "
                "[--pinned-rate RAD_S] [--backlash-rate RAD_S] [--scale-sd SD] [--scale-rate PER_S] "
-               "[--transit-noise F] [--deflection-error E] [--inertial-error F] [--damping-sd NM_S] "
+               "[--transit-noise F] [--deflection-error E] "
                "[--inertia KG_M2] [--accel-time S] [--deadzone-width NM] [--width-multiple M] "
                "[--first-seed N] [--per-run] [--scenario FILE] [--trace RUN]\n");
   return 2;
@@ -146,10 +146,6 @@ int main(int argc, char** argv) {
       options.compliance_scale_sd = std::atof(argv[++i]);
     } else if (a == "--deadzone-width" && has) {  // replaces paper.json's, N·m
       deadzone_width = std::atof(argv[++i]);
-    } else if (a == "--inertial-error" && has) {
-      options.inertial_torque_error = std::atof(argv[++i]);
-    } else if (a == "--damping-sd" && has) {
-      options.unmodelled_damping_nm_s_per_rad = std::atof(argv[++i]);
     } else if (a == "--deflection-error" && has) {
       options.deflection_model_error = std::atof(argv[++i]);
     } else if (a == "--first-seed" && has) {  // fresh seeds: an out-of-sample check

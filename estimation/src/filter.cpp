@@ -111,12 +111,6 @@ double MotorMotion::InertialTorque(const FilterOptions& o) const {
                     o.effort_limit_nm);
 }
 
-double MotorMotion::EffortModelVariance(const FilterOptions& o) const {
-  const double inertial = o.inertial_torque_error * InertialTorque(o);
-  const double damping = o.unmodelled_damping_nm_s_per_rad * velocity_rad_s;
-  return inertial * inertial + damping * damping;
-}
-
 struct ComplianceFilter::Impl {
   Impl(const models::ModelParameters& p, const FilterOptions& o);
 
@@ -460,9 +454,7 @@ FilterEstimate ComplianceFilter::Impl::Step(const FilterSample& sample) {
     const double inertial = sample.tip_fixed ? motion[j].InertialTorque(options) : 0.0;
     ScalarUpdate(j, kEffortChannel, Eigen::Vector4d::Unit(kTorque),
                  effort - tau0 - inertial - joint[j].mean[kTorque],
-                 options.effort_noise_nm * options.effort_noise_nm +
-                     motion[j].EffortModelVariance(options),
-                 &tally);
+                 options.effort_noise_nm * options.effort_noise_nm, &tally);
   }
   // Encoders, linearised at the state the efforts just updated.
   Eigen::Vector2d predicted;

@@ -62,11 +62,6 @@ bool FilterOptions::IsValid(std::string* error) const {
     return Fail(error, "FilterOptions::backlash_transit_noise must be finite and >= 0 — a "
                        "fraction of the clearance's variance, e.g. 1, or 0 for a certain pull");
   }
-  if (!(std::isfinite(inertial_torque_error) && inertial_torque_error >= 0.0 &&
-        std::isfinite(unmodelled_damping_nm_s_per_rad) && unmodelled_damping_nm_s_per_rad >= 0.0)) {
-    return Fail(error, "FilterOptions::inertial_torque_error and unmodelled_damping_nm_s_per_rad "
-                       "must be finite and >= 0 — e.g. 0.3 (a fraction of J·θ̈) and 0.03 N·m·s/rad");
-  }
   if (!(std::isfinite(motor_inertia_kg_m2) && motor_inertia_kg_m2 >= 0.0)) {
     return Fail(error, "FilterOptions::motor_inertia_kg_m2 must be finite and >= 0 — the motor "
                        "inertia reflected at the joint in kg·m², or 0 to read the whole effort "

@@ -25,7 +25,7 @@
 //   q_enc_j  = q_tip_j + b_j + s_j·K_j(L)·tau_j   (ComplianceEffect)
 //            variance σ_enc² + (ε·K_j(L)·tau_j)², ε = deflection_model_error
 //   tau_meas_j − tau0_j(q_enc, L) − J·θ̈_j = tau_j  (bias torque; J·θ̈ with the
-//            tip held, MotorMotion)   variance σ_effort² + MotorMotion's model error
+//            tip held, MotorMotion)                            σ_effort
 //   q_ref_j  = q_tip_j                             (when the log has it) σ_ref
 // Jacobians come from ceres::Jet. The joints share no state and no
 // measurement while no coupling effect is on, so the filter runs two 4-state
@@ -86,12 +86,6 @@ struct FilterOptions {
   /// arm (experiments JointDynamics) has 0.08.
   double motor_inertia_kg_m2 = 0.0;
   double acceleration_filter_time_s = 0.01;
-  /// Model error of the load read from the effort while the motor moves, as
-  /// extra effort variance: (this × J·θ̈)² for the inertial torque's error
-  /// (the acceleration is estimated, late by about 2T), plus (σ_c·θ̇)² for a
-  /// damping the model does not have (shaft, joint friction), σ_c in N·m·s/rad.
-  double inertial_torque_error = 0.0;
-  double unmodelled_damping_nm_s_per_rad = 0.0;
   /// Relative error of the deflection model, as encoder variance (this × K·tau)².
   double deflection_model_error = 0.06;
   // Priors.
@@ -217,8 +211,6 @@ struct MotorMotion {
   /// than its largest effort can drive it, and an encoder outlier must not
   /// become a large torque.
   double InertialTorque(const FilterOptions& options) const;
-  /// The variance this motion adds to the effort as a measurement of the load.
-  double EffortModelVariance(const FilterOptions& options) const;
 };
 
 /// The output quantities of a joint-block pair, computed the same way for the
