@@ -2,7 +2,7 @@
 // side by side with the memoryless corrections, in one run:
 //
 //   build/bench/filter_accuracy_bench --params P.json LOG.csv [--free] [--smooth]
-//       [--slow-speed 0.02] [--per-segment] [--trace FROM TO] [--motor-inertia KG_M2]
+//       [--slow-speed 0.02] [--per-segment] [--trace FROM TO] [--motor-inertia KG_M2] [--accel-time S]
 //
 // prints, against q1_true/q2_true, the RMS and largest tip error (mm, through
 // the PSM kinematics) of the uncorrected encoders, equation (2), the dead-zone
@@ -69,7 +69,7 @@ std::map<int, double> SegmentSpeeds(const io::LogHeader& header) {
 int Usage() {
   std::fprintf(stderr,
                "usage: filter_accuracy_bench --params P.json LOG.csv [--free] [--smooth] "
-               "[--slow-speed RAD_S] [--per-segment] [--trace FROM TO] [--motor-inertia KG_M2]\n");
+               "[--slow-speed RAD_S] [--per-segment] [--trace FROM TO] [--motor-inertia KG_M2] [--accel-time S]\n");
   return 2;
 }
 
@@ -93,6 +93,8 @@ int main(int argc, char** argv) {
       smooth = true;
     } else if (a == "--motor-inertia" && i + 1 < argc) {
       options.motor_inertia_kg_m2 = std::atof(argv[++i]);
+    } else if (a == "--accel-time" && i + 1 < argc) {
+      options.acceleration_filter_time_s = std::atof(argv[++i]);
     } else if (a == "--slow-speed" && i + 1 < argc) {
       slow_speed = std::atof(argv[++i]);
     } else if (a == "--trace" && i + 2 < argc) {  // print rows FROM..TO (debugging)
