@@ -62,6 +62,10 @@ bool FilterOptions::IsValid(std::string* error) const {
     return Fail(error, "FilterOptions::backlash_transit_noise must be finite and >= 0 — a "
                        "fraction of the clearance's variance, e.g. 1, or 0 for a certain pull");
   }
+  if (!(std::isfinite(deflection_model_error) && deflection_model_error >= 0.0)) {
+    return Fail(error, "FilterOptions::deflection_model_error must be finite and >= 0 — a "
+                       "fraction of K·tau, e.g. 0.06, or 0 for logs drawn from the model");
+  }
   if (!(std::isfinite(motor_inertia_kg_m2) && motor_inertia_kg_m2 >= 0.0)) {
     return Fail(error, "FilterOptions::motor_inertia_kg_m2 must be finite and >= 0 — the motor "
                        "inertia reflected at the joint in kg·m², or 0 to read the whole effort "

@@ -54,6 +54,39 @@ TEST(FilterOptions, NamesTheWrongOptionAndTheFix) {
   EXPECT_NE(error.find("mismatch_window"), std::string::npos) << error;
 }
 
+TEST(FilterOptions, RefusesNegativeModelErrorsAndInertia) {
+  std::string error;
+  FilterOptions o;
+  o.deflection_model_error = -0.1;
+  EXPECT_FALSE(o.IsValid(&error));
+  EXPECT_NE(error.find("deflection_model_error"), std::string::npos) << error;
+  o = FilterOptions{};
+  o.motor_inertia_kg_m2 = std::nan("");
+  EXPECT_FALSE(o.IsValid(&error));
+  EXPECT_NE(error.find("motor_inertia_kg_m2"), std::string::npos) << error;
+}
+
+// Under a constant acceleration a the encoder follows a·t²/2; once the two
+// low-pass stages have settled (10 T) the estimate is a, to the last count's
+// worth, and the inertial torque J·a, never beyond the effort limit.
+TEST(MotorMotion, RecoversAConstantAccelerationAndBoundsTheTorque) {
+  FilterOptions o;
+  o.motor_inertia_kg_m2 = 0.08;
+  const double a = 1.5, dt = 1.0 / 1500.0;
+  MotorMotion motion;
+  double q_previous = 0.0;
+  for (int k = 1; k <= 300; ++k) {  // 0.2 s = 20 T
+    const double q = 0.5 * a * (k * dt) * (k * dt);
+    motion.Advance(o, dt, q - q_previous);
+    q_previous = q;
+  }
+  EXPECT_NEAR(motion.acceleration_rad_s2, a, 1e-6);
+  EXPECT_NEAR(motion.velocity_rad_s, a * (300 * dt - 0.01), 2e-3 * a);  // lags by ≈ T
+  EXPECT_NEAR(motion.InertialTorque(o), 0.08 * a, 1e-7);
+  motion.acceleration_rad_s2 = 1e3;  // an encoder outlier's worth
+  EXPECT_EQ(motion.InertialTorque(o), o.effort_limit_nm);
+}
+
 TEST(ComplianceFilter, RefusesBadOptionsAndParameters) {
   FilterOptions o;
   o.sample_period_s = -1.0;
