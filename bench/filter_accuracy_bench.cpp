@@ -2,7 +2,7 @@
 // side by side with the memoryless corrections, in one run:
 //
 //   build/bench/filter_accuracy_bench --params P.json LOG.csv [--free] [--smooth]
-//       [--slow-speed 0.02] [--per-segment] [--trace FROM TO]
+//       [--slow-speed 0.02] [--per-segment] [--trace FROM TO] [--motor-inertia KG_M2] [--accel-time S]
 //
 // prints, against q1_true/q2_true, the RMS and largest tip error (mm, through
 // the PSM kinematics) of the uncorrected encoders, equation (2), the dead-zone
@@ -11,6 +11,8 @@
 // "speed S rad/s" with S the slow speed), the largest |Δq_corr − Δq_enc|
 // between consecutive samples of one push, in encoder counts (7.7 µrad).
 // --free drops the tip_fixed column (the filter is not told the tip is held).
+// --motor-inertia J: the filter subtracts J·θ̈ from the effort (the simulator's
+// arm has 0.08 kg·m²; FilterOptions' default is 0).
 // Not a Google Benchmark: an accuracy study, run by hand (docs/validation.md).
 #include <cmath>
 #include <cstdio>
@@ -67,7 +69,7 @@ std::map<int, double> SegmentSpeeds(const io::LogHeader& header) {
 int Usage() {
   std::fprintf(stderr,
                "usage: filter_accuracy_bench --params P.json LOG.csv [--free] [--smooth] "
-               "[--slow-speed RAD_S]\n");
+               "[--slow-speed RAD_S] [--per-segment] [--trace FROM TO] [--motor-inertia KG_M2] [--accel-time S]\n");
   return 2;
 }
 
@@ -78,6 +80,7 @@ int main(int argc, char** argv) {
   bool free_tip = false, smooth = false, per_segment = false;
   double slow_speed = 0.02;
   long trace_from = -1, trace_to = -1;
+  estimation::FilterOptions options;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--params" && i + 1 < argc) {
@@ -88,6 +91,10 @@ int main(int argc, char** argv) {
       per_segment = true;
     } else if (a == "--smooth") {
       smooth = true;
+    } else if (a == "--motor-inertia" && i + 1 < argc) {
+      options.motor_inertia_kg_m2 = std::atof(argv[++i]);
+    } else if (a == "--accel-time" && i + 1 < argc) {
+      options.acceleration_filter_time_s = std::atof(argv[++i]);
     } else if (a == "--slow-speed" && i + 1 < argc) {
       slow_speed = std::atof(argv[++i]);
     } else if (a == "--trace" && i + 2 < argc) {  // print rows FROM..TO (debugging)
@@ -113,8 +120,8 @@ int main(int argc, char** argv) {
     const estimation::ComplianceCorrector paper(parameters, estimation::CorrectionModel::kPaper);
     const estimation::ComplianceCorrector deadzone(parameters,
                                                    estimation::CorrectionModel::kDeadZone);
-    estimation::FilterSmoother smoother(parameters);
-    estimation::ComplianceFilter filter(parameters);
+    estimation::FilterSmoother smoother(parameters, options);
+    estimation::ComplianceFilter filter(parameters, options);
     if (smooth) smoother.Reserve(rows);
     std::vector<Method> m(smooth ? 5 : 4);
     const char* names[] = {"uncorrected", "equation (2)", "dead-zone", "filter", "smoother"};

@@ -79,10 +79,8 @@ class EkfModel {
       q[4 * j] = tip_fixed ? 0.0 : o.free_tip_rate_rad * o.free_tip_rate_rad * dt;
       q[4 * j + 1] = o.external_torque_rate_nm * o.external_torque_rate_nm * dt;
       const double relax = tip_fixed ? 0.0 : Relax(j, increment[j]);
-      const double unloaded = tip_fixed ? o.backlash_rate_rad * o.backlash_rate_rad * dt
-                                        : relax * (2.0 - relax) * delta_[j] * delta_[j] / 3.0;
-      q[4 * j + 2] = (1.0 - sat * sat) * unloaded +
-                     o.backlash_pinned_rate_rad * o.backlash_pinned_rate_rad * dt;
+      q[4 * j + 2] =
+          estimation::BacklashProcessVariance(o, dt, tip_fixed, relax, sat, delta_[j]);
       q[4 * j + 3] = o.compliance_scale_rate * o.compliance_scale_rate * dt;
     }
     return q;
@@ -171,6 +169,7 @@ class DenseEkf {
       if (!(std::abs(increment[j]) <= 5.0 * dt)) increment[j] = 0.0;
     }
     last_encoder_ = s.encoder_rad;
+    for (int j = 0; j < 2; ++j) motion_[j].Advance(model_.options(), dt, increment[j]);
     Jet8 x[8], next[8];
     for (int i = 0; i < 8; ++i) x[i] = Jet8(x_[i], i);
     model_.Process(x, s.tip_fixed, increment, dt, next);
@@ -198,12 +197,15 @@ class DenseEkf {
     for (int i = 0; i < 4; ++i) h.row(i) = z[i].v.transpose();
     for (int j = 0; j < 2; ++j) {
       innovation[j] = s.encoder_rad[j] - z[j].a;
-      innovation[2 + j] =
-          s.effort_nm[j] - model_.Bias(j, s.encoder_rad[j], s.insertion_depth_m) - z[2 + j].a;
+      innovation[2 + j] = s.effort_nm[j] - model_.Bias(j, s.encoder_rad[j], s.insertion_depth_m) -
+                          (s.tip_fixed ? motion_[j].InertialTorque(o) : 0.0) - z[2 + j].a;
     }
     typename Types::M44 r = Types::M44::Zero(4, 4);
-    r(0, 0) = r(1, 1) = o.encoder_noise_rad * o.encoder_noise_rad;
-    r(2, 2) = r(3, 3) = o.effort_noise_nm * o.effort_noise_nm;
+    for (int j = 0; j < 2; ++j) {
+      const double deflection = o.deflection_model_error * h(j, 4 * j + 3);  // error × K·tau
+      r(j, j) = o.encoder_noise_rad * o.encoder_noise_rad + deflection * deflection;
+      r(2 + j, 2 + j) = o.effort_noise_nm * o.effort_noise_nm;
+    }
     const typename Types::M84 ph = p_ * h.transpose();
     const typename Types::M44 innovation_cov = h * ph + r;
     const typename Types::M84 gain = innovation_cov.ldlt().solve(ph.transpose()).transpose();
@@ -222,6 +224,7 @@ class DenseEkf {
   bool initialised_ = false;
   double last_time_ = 0.0;
   Eigen::Vector2d last_encoder_{0.0, 0.0};
+  estimation::MotorMotion motion_[2];
 };
 
 using DenseFixedEkf = DenseEkf<FixedSizeTypes>;

@@ -7,7 +7,12 @@
 //   build/bench/filter_consistency_bench [--runs 200] [--every 150] [--paper-bias]
 //       [--effort-noise NM] [--encoder-noise RAD] [--torque-rate NM_S]
 //       [--pinned-rate RAD_S] [--backlash-rate RAD_S] [--scale-sd SD] [--scale-rate R]
-//       [--scenario FILE] [--trace RUN]
+//       [--transit-noise F] [--deflection-error E]
+//       [--inertia KG_M2] [--accel-time S] [--deadzone-width NM] [--width-multiple M]
+//       [--first-seed N] [--per-run] [--scenario FILE] [--trace RUN]
+//
+// The motor inertia is the scenario's (JointDynamics) unless --inertia is given;
+// --first-seed checks the tuned options on seeds they were not tuned on.
 //
 // Each run: experiments/scenarios/divot.json with hidden_effects={}, one depth
 // (0.10 / 0.15 / 0.20 m), one push direction (the 8 of the scenario), one peak
@@ -49,6 +54,7 @@
 #include "pliant/experiments/simulator.h"
 #include "pliant/io/log.h"
 #include "pliant/io/parameters_json.h"
+#include "pliant/models/parameters.h"
 
 namespace {
 
@@ -94,7 +100,10 @@ int Usage() {
   std::fprintf(stderr,
                "usage: filter_consistency_bench [--runs N] [--every K] [--paper-bias] "
                "[--effort-noise NM] [--encoder-noise RAD] [--torque-rate NM_S] "
-               "[--pinned-rate RAD_S] [--backlash-rate RAD_S] [--scale-sd SD] [--scale-rate PER_S] [--scenario FILE] [--trace RUN]\n");
+               "[--pinned-rate RAD_S] [--backlash-rate RAD_S] [--scale-sd SD] [--scale-rate PER_S] "
+               "[--transit-noise F] [--deflection-error E] "
+               "[--inertia KG_M2] [--accel-time S] [--deadzone-width NM] [--width-multiple M] "
+               "[--first-seed N] [--per-run] [--scenario FILE] [--trace RUN]\n");
   return 2;
 }
 
@@ -104,6 +113,10 @@ int main(int argc, char** argv) {
   int runs = 200, every = 150;
   bool paper_bias = false;
   int trace = -1;
+  bool per_run = false;
+  double deadzone_width = -1.0;
+  bool inertia_given = false;
+  int first_seed = 1000;
   std::string scenario_path = PLIANT_SOURCE_DIR "/experiments/scenarios/divot.json";
   estimation::FilterOptions options;
   for (int i = 1; i < argc; ++i) {
@@ -131,6 +144,23 @@ int main(int argc, char** argv) {
       options.compliance_scale_rate = std::atof(argv[++i]);
     } else if (a == "--scale-sd" && has) {
       options.compliance_scale_sd = std::atof(argv[++i]);
+    } else if (a == "--deadzone-width" && has) {  // replaces paper.json's, N·m
+      deadzone_width = std::atof(argv[++i]);
+    } else if (a == "--deflection-error" && has) {
+      options.deflection_model_error = std::atof(argv[++i]);
+    } else if (a == "--first-seed" && has) {  // fresh seeds: an out-of-sample check
+      first_seed = std::atoi(argv[++i]);
+    } else if (a == "--per-run") {
+      per_run = true;
+    } else if (a == "--width-multiple" && has) {
+      options.backlash_width_noise_multiple = std::atof(argv[++i]);
+    } else if (a == "--transit-noise" && has) {
+      options.backlash_transit_noise = std::atof(argv[++i]);
+    } else if (a == "--inertia" && has) {
+      options.motor_inertia_kg_m2 = std::atof(argv[++i]);
+      inertia_given = true;
+    } else if (a == "--accel-time" && has) {
+      options.acceleration_filter_time_s = std::atof(argv[++i]);
     } else if (a == "--scenario" && has) {
       scenario_path = argv[++i];
     } else {
@@ -158,7 +188,7 @@ int main(int argc, char** argv) {
       std::snprintf(buffer[3], sizeof buffer[3], "experiment.speeds_rad_s=[%g]", speed);
       const auto scenario = experiments::ReadScenario(
           scenario_path, {"hidden_effects={}", buffer[0], buffer[1], buffer[2], buffer[3]});
-      const auto result = experiments::Simulate(scenario, 1000 + run);
+      const auto result = experiments::Simulate(scenario, first_seed + run);
       const io::Log& log = result.log;
 
       models::ModelParameters parameters = paper;
@@ -171,11 +201,17 @@ int main(int argc, char** argv) {
           for (double& v : parameters.joints[j].bias_torque.torque_nm) v += shift;
         }
       }
+      if (deadzone_width > 0.0) {
+        for (auto& joint : parameters.joints) joint.deadzone_width_nm = deadzone_width;
+      }
+      // The arm's motor inertia is the truth's, as the bias is.
+      if (!inertia_given) options.motor_inertia_kg_m2 = scenario.joint.inertia_kg_m2[0];
       estimation::ComplianceFilter filter(parameters, options);
       const io::StandardColumns c(log.header);
       const std::size_t rows = log.Rows(), cols = log.Columns();
       rows_total += long(rows);
       const std::size_t chosen = std::uniform_int_distribution<std::size_t>(0, rows - 1)(pick);
+      Tally run_held;
       for (std::size_t r = 0; r < rows; ++r) {
         const double* v = &log.values[r * cols];
         const auto s = estimation::SampleFromRow(c, v);
@@ -193,20 +229,39 @@ int main(int argc, char** argv) {
                       e.external_torque_nm[0], e.external_torque_nm[1], e.backlash_offset_rad[0] / k,
                       e.backlash_offset_rad[1] / k, e.compliance_scale[0], e.compliance_scale[1],
                       e.flags);
+          // The load the truth's deflection implies, beyond the clearance: what tau should be.
+          for (int j = 0; j < 2; ++j) {
+            const double d = (j ? v[c.q2] - v[c.q2_true] : v[c.q1] - v[c.q1_true]);
+            const double delta = parameters.joints[j].backlash_rad;
+            const double elastic = std::abs(d) > delta ? d - std::copysign(delta, d) : 0.0;
+            std::printf("    j%d tau from deflection %.4f, filter tau - it %.4f N·m\n", j + 1,
+                        elastic / models::ComplianceAt(parameters.joints[j], depth),
+                        e.external_torque_nm[j] -
+                            elastic / models::ComplianceAt(parameters.joints[j], depth));
+          }
         }
+        if (s.tip_fixed) run_held.Add(error, e.covariance_rad2);
         all.Add(error, e.covariance_rad2);
         (s.tip_fixed ? held : free_tip).Add(error, e.covariance_rad2);
       }
+      if (per_run) {  // which runs carry the NEES (tuning)
+        std::printf("run %3d depth %.2f dir %3d peak %.1f speed %.2f: held NEES %7.2f max %7.1f  "
+                    "coverage %5.1f %% %5.1f %%\n", run, depth, direction, torque, speed,
+                    run_held.Mean(), run_held.max_nees, 100.0 * run_held.covered[0] / run_held.n,
+                    100.0 * run_held.covered[1] / run_held.n);
+      }
     }
-    std::printf("filter consistency on the CVODE simulator: %d divot runs (seeds 1000..%d, hidden "
+    std::printf("filter consistency on the CVODE simulator: %d divot runs (seeds %d..%d, hidden "
                 "effects off), %ld rows, bias %s\n",
-                runs, 1000 + runs - 1, rows_total,
+                runs, first_seed, first_seed + runs - 1, rows_total,
                 paper_bias ? "of data/paper.json" : "of the truth");
     std::printf("  options: effort %.4g N·m, encoder %.4g rad, torque rate %.4g N·m/√s, pinned "
-                "%.4g rad/√s, backlash %.4g rad/√s\n",
+                "%.4g rad/√s, backlash %.4g rad/√s, transit %.3g, deflection error %.3g, motor "
+                "inertia %.3g kg·m²\n",
                 options.effort_noise_nm, options.encoder_noise_rad,
                 options.external_torque_rate_nm, options.backlash_pinned_rate_rad,
-                options.backlash_rate_rad);
+                options.backlash_rate_rad, options.backlash_transit_noise,
+                options.deflection_model_error, options.motor_inertia_kg_m2);
     Print("one sample per run (independent)", one_per_run, true);
     std::printf("  every %d-th sample (band indicative only: the samples are correlated):\n",
                 every);

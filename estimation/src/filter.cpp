@@ -78,6 +78,39 @@ double BacklashRelax(const FilterOptions& o, double dt, double encoder_increment
   return -std::expm1(-dt / o.backlash_relax_time_s) * moving;
 }
 
+double BacklashProcessVariance(const FilterOptions& o, double dt, bool tip_fixed, double relax,
+                               double saturation, double delta_rad) {
+  const double prior_variance = delta_rad * delta_rad / 3.0;
+  const double pinned = saturation * saturation;  // g: how firmly the load holds the shaft
+  // Unloaded, b diffuses: held tip, at σ_b (the arm moves it across the
+  // clearance, the encoders follow); free tip, back to the uniform prior as it
+  // forgets its wall (the stationary variance of b+ = (1 − r)·b + w is δ²/3).
+  const double unloaded = tip_fixed ? o.backlash_rate_rad * o.backlash_rate_rad * dt
+                                    : relax * (2.0 - relax) * prior_variance;
+  // Partly loaded, held tip: the step pulls b by g toward δ·S(tau/w), a smooth
+  // stand-in for a shaft that meets its wall at some load inside w (the
+  // simulator's at a few hundredths of a N·m). Where is not known, so the
+  // pull is uncertain in proportion to g·(1 − g): zero at no load (no pull)
+  // and on the wall (no doubt). Without it the pull, taken as certain, put b
+  // short of the wall and dragged s down (docs/validation.md, Part 4).
+  const double transit =
+      tip_fixed ? o.backlash_transit_noise * pinned * (1.0 - pinned) * prior_variance : 0.0;
+  return (1.0 - pinned) * unloaded + transit +
+         o.backlash_pinned_rate_rad * o.backlash_pinned_rate_rad * dt;
+}
+
+void MotorMotion::Advance(const FilterOptions& o, double dt, double encoder_increment) {
+  const double r = -std::expm1(-dt / o.acceleration_filter_time_s);
+  const double v = velocity_rad_s + r * (encoder_increment / dt - velocity_rad_s);
+  acceleration_rad_s2 += r * ((v - velocity_rad_s) / dt - acceleration_rad_s2);
+  velocity_rad_s = v;
+}
+
+double MotorMotion::InertialTorque(const FilterOptions& o) const {
+  return std::clamp(o.motor_inertia_kg_m2 * acceleration_rad_s2, -o.effort_limit_nm,
+                    o.effort_limit_nm);
+}
+
 struct ComplianceFilter::Impl {
   Impl(const models::ModelParameters& p, const FilterOptions& o);
 
@@ -112,6 +145,7 @@ struct ComplianceFilter::Impl {
   bool last_tip_fixed = false;
   Eigen::Vector2d last_encoder{0.0, 0.0};
   bool implausible_jump[2] = {false, false};  // encoder moved faster than any joint can
+  MotorMotion motion[2];  // for the inertial torque in the effort
   int window_position = 0;
   int window_count = 0;
   double window_sum = 0.0;
@@ -169,6 +203,7 @@ void ComplianceFilter::Impl::Reset() {
     joint[j].covariance = PriorCovariance(options, delta[j]);
     transition[j] = FilterTransition{};
     for (int& r : rejections[j]) r = 0;
+    motion[j] = MotorMotion{};
   }
   std::fill(window_nis.begin(), window_nis.end(), 0.0);
   std::fill(window_dof.begin(), window_dof.end(), 0);
@@ -214,10 +249,8 @@ void ComplianceFilter::Impl::Predict(int j, double dt, bool tip_fixed, double en
   const double fbt = next.v[kTorque];
   const double fbb = next.v[kBacklash];
   // How firmly the load holds the shaft on a wall: S² = 1 beyond the width,
-  // 0 at no load. An unloaded shaft relaxes to the uniform prior; a loaded one
-  // is pinned.
+  // 0 at no load (BacklashProcessVariance).
   const double saturation = models::SmoothSaturation(s.mean[kTorque] / width[j]);
-  const double hold = 1.0 - saturation * saturation;
 
   s.mean[kTip] += tip_fixed ? 0.0 : encoder_increment;
   s.mean[kBacklash] = next.a;
@@ -233,13 +266,8 @@ void ComplianceFilter::Impl::Predict(int j, double dt, bool tip_fixed, double en
   q[kTip] = tip_fixed ? 0.0 : o.free_tip_rate_rad * o.free_tip_rate_rad * dt;
   q[kTorque] = o.external_torque_rate_nm * o.external_torque_rate_nm * dt;
   const double prior_variance = delta[j] * delta[j] / 3.0;
-  // Unloaded, b diffuses: held tip, at σ_b (the arm moves it across the
-  // clearance, the encoders follow); free tip, back to the uniform prior as it
-  // forgets its wall (the stationary variance of b+ = (1 − r)·b + w is δ²/3).
-  const double unloaded = tip_fixed ? o.backlash_rate_rad * o.backlash_rate_rad * dt
-                                    : relax * (2.0 - relax) * prior_variance;
   const double diffusion =
-      hold * unloaded + o.backlash_pinned_rate_rad * o.backlash_pinned_rate_rad * dt;
+      BacklashProcessVariance(o, dt, tip_fixed, relax, saturation, delta[j]);
   // b lives in ±δ: its variance never needs to exceed the uniform's δ²/3.
   q[kBacklash] = std::min(diffusion, std::max(0.0, prior_variance - pbb));
   q[kScale] = o.compliance_scale_rate * o.compliance_scale_rate * dt;
@@ -385,6 +413,7 @@ FilterEstimate ComplianceFilter::Impl::Step(const FilterSample& sample) {
       double increment = sample.encoder_rad[j] - last_encoder[j];
       implausible_jump[j] = std::abs(increment) > kMaxJointSpeed * dt;
       if (!(std::abs(increment) <= kMaxJointSpeed * dt)) increment = 0.0;
+      motion[j].Advance(options, dt, increment);
       Predict(j, dt, sample.tip_fixed, increment);
       if (released) {
         // Held again elsewhere, after a transit the log does not show: the tip
@@ -417,8 +446,14 @@ FilterEstimate ComplianceFilter::Impl::Step(const FilterSample& sample) {
     const double q = std::isfinite(sample.encoder_rad[j]) ? sample.encoder_rad[j]
                                                           : joint[j].mean[kTip];
     const double tau0 = models::BiasTorqueAt(parameters.joints[j], q, depth);
+    // The inertial torque, with the tip held only. With a free tip the load
+    // is ~0 and the effort serves to pin b; there the flicker of the estimated
+    // acceleration (one count ≈ 0.07 rad/s², 0.006 N·m) walked b across the
+    // clearance during the long free-tip rests of a divot log and moved the
+    // tip by δ (docs/validation.md, Part 4).
+    const double inertial = sample.tip_fixed ? motion[j].InertialTorque(options) : 0.0;
     ScalarUpdate(j, kEffortChannel, Eigen::Vector4d::Unit(kTorque),
-                 effort - tau0 - joint[j].mean[kTorque],
+                 effort - tau0 - inertial - joint[j].mean[kTorque],
                  options.effort_noise_nm * options.effort_noise_nm, &tally);
   }
   // Encoders, linearised at the state the efforts just updated.
@@ -430,8 +465,10 @@ FilterEstimate ComplianceFilter::Impl::Step(const FilterSample& sample) {
       tally.flags |= kFlagMissing;
       continue;
     }
+    const double deflection = options.deflection_model_error * h[j][kScale];
     ScalarUpdate(j, kEncoderChannel, h[j], sample.encoder_rad[j] - predicted[j],
-                 options.encoder_noise_rad * options.encoder_noise_rad, &tally,
+                 options.encoder_noise_rad * options.encoder_noise_rad + deflection * deflection,
+                 &tally,
                  implausible_jump[j] && !sample.tip_fixed);
   }
   for (int j = 0; j < 2; ++j) {

@@ -46,6 +46,7 @@ bool FilterOptions::IsValid(std::string* error) const {
       {"initial_tip_sd_rad", initial_tip_sd_rad, "rad"},
       {"effort_limit_nm", effort_limit_nm, "N·m"},
       {"backlash_width_noise_multiple", backlash_width_noise_multiple, "multiples of σ_effort"},
+      {"acceleration_filter_time_s", acceleration_filter_time_s, "s"},
   };
   for (const auto& p : positives) {
     if (!(std::isfinite(p.value) && p.value > 0.0)) {
@@ -56,6 +57,19 @@ bool FilterOptions::IsValid(std::string* error) const {
   if (!(std::isfinite(compliance_scale_rate) && compliance_scale_rate >= 0.0)) {
     return Fail(error, "FilterOptions::compliance_scale_rate must be finite and >= 0 — use 0 "
                        "for a compliance that does not change during the log");
+  }
+  if (!(std::isfinite(backlash_transit_noise) && backlash_transit_noise >= 0.0)) {
+    return Fail(error, "FilterOptions::backlash_transit_noise must be finite and >= 0 — a "
+                       "fraction of the clearance's variance, e.g. 1, or 0 for a certain pull");
+  }
+  if (!(std::isfinite(deflection_model_error) && deflection_model_error >= 0.0)) {
+    return Fail(error, "FilterOptions::deflection_model_error must be finite and >= 0 — a "
+                       "fraction of K·tau, e.g. 0.06, or 0 for logs drawn from the model");
+  }
+  if (!(std::isfinite(motor_inertia_kg_m2) && motor_inertia_kg_m2 >= 0.0)) {
+    return Fail(error, "FilterOptions::motor_inertia_kg_m2 must be finite and >= 0 — the motor "
+                       "inertia reflected at the joint in kg·m², or 0 to read the whole effort "
+                       "as load");
   }
   for (const auto& [name, p] : {std::pair<const char*, double>{"gate_probability", gate_probability},
                                 {"mismatch_probability", mismatch_probability}}) {

@@ -25,6 +25,14 @@ bool IsSymmetricPositiveDefinite(const Eigen::Matrix4d& p) {
   return Eigen::LLT<Eigen::Matrix4d>(p).info() == Eigen::Success;
 }
 
+// A log drawn from the filter's own model (filter_synthetic.h) has no
+// deflection error beyond s: the allowance for the plant's is off.
+FilterOptions ModelLogOptions() {
+  FilterOptions o;
+  o.deflection_model_error = 0.0;
+  return o;
+}
+
 TEST(FilterOptions, DefaultsAreValid) {
   std::string error;
   EXPECT_TRUE(FilterOptions{}.IsValid(&error)) << error;
@@ -44,6 +52,39 @@ TEST(FilterOptions, NamesTheWrongOptionAndTheFix) {
   o.mismatch_window = 3;
   EXPECT_FALSE(o.IsValid(&error));
   EXPECT_NE(error.find("mismatch_window"), std::string::npos) << error;
+}
+
+TEST(FilterOptions, RefusesNegativeModelErrorsAndInertia) {
+  std::string error;
+  FilterOptions o;
+  o.deflection_model_error = -0.1;
+  EXPECT_FALSE(o.IsValid(&error));
+  EXPECT_NE(error.find("deflection_model_error"), std::string::npos) << error;
+  o = FilterOptions{};
+  o.motor_inertia_kg_m2 = std::nan("");
+  EXPECT_FALSE(o.IsValid(&error));
+  EXPECT_NE(error.find("motor_inertia_kg_m2"), std::string::npos) << error;
+}
+
+// Under a constant acceleration a the encoder follows a·t²/2; once the two
+// low-pass stages have settled (10 T) the estimate is a, to the last count's
+// worth, and the inertial torque J·a, never beyond the effort limit.
+TEST(MotorMotion, RecoversAConstantAccelerationAndBoundsTheTorque) {
+  FilterOptions o;
+  o.motor_inertia_kg_m2 = 0.08;
+  const double a = 1.5, dt = 1.0 / 1500.0;
+  MotorMotion motion;
+  double q_previous = 0.0;
+  for (int k = 1; k <= 300; ++k) {  // 0.2 s = 20 T
+    const double q = 0.5 * a * (k * dt) * (k * dt);
+    motion.Advance(o, dt, q - q_previous);
+    q_previous = q;
+  }
+  EXPECT_NEAR(motion.acceleration_rad_s2, a, 1e-6);
+  EXPECT_NEAR(motion.velocity_rad_s, a * (300 * dt - 0.01), 2e-3 * a);  // lags by ≈ T
+  EXPECT_NEAR(motion.InertialTorque(o), 0.08 * a, 1e-7);
+  motion.acceleration_rad_s2 = 1e3;  // an encoder outlier's worth
+  EXPECT_EQ(motion.InertialTorque(o), o.effort_limit_nm);
 }
 
 TEST(ComplianceFilter, RefusesBadOptionsAndParameters) {
@@ -79,7 +120,8 @@ TEST(ComplianceFilter, FreeTipAtRestKeepsTheBacklashUncertainty) {
 // σ(q̂) ≥ K·τ·σ_s (closed form, 0.15 m: K = 1/15.99729 rad/(N·m)).
 TEST(ComplianceFilter, FreeTipUnderLoadCarriesTheCompliancePrior) {
   const auto p = PaperParameters();
-  ComplianceFilter filter(p);
+  const FilterOptions o;
+  ComplianceFilter filter(p, o);
   const double k = 1.0 / 15.99729, tau = 0.8;
   FilterSample s;
   s.encoder_rad << 0.1 + kDelta1 + k * tau, -0.2;
@@ -91,7 +133,9 @@ TEST(ComplianceFilter, FreeTipUnderLoadCarriesTheCompliancePrior) {
   }
   EXPECT_NEAR(e.corrected_rad[0], 0.1, 2e-5);
   EXPECT_NEAR(e.backlash_offset_rad[0], kDelta1, 1e-9);
-  const double prior_part = k * tau * 0.1;
+  // The compliance prior (σ_s = 0.1) and the deflection model's own error
+  // (deflection_model_error, white on each encoder sample) are independent.
+  const double prior_part = k * tau * std::hypot(0.1, o.deflection_model_error);
   EXPECT_GE(std::sqrt(e.covariance_rad2(0, 0)), 0.99 * prior_part);
   EXPECT_LE(std::sqrt(e.covariance_rad2(0, 0)), 1.1 * prior_part);
   // The tip correction is |J·(q − q̂)|, J = r·cos(q2) for joint 1 (r = 0.15 − 0.0156 m).
@@ -105,7 +149,7 @@ TEST(ComplianceFilter, FreeTipUnderLoadCarriesTheCompliancePrior) {
 // the tip to a few µrad and the compliance scale to well under its prior.
 TEST(ComplianceFilter, FixedTipLearnsComplianceAndPinsTheTip) {
   const auto p = PaperParameters();
-  const FilterOptions o;
+  const FilterOptions o = ModelLogOptions();
   SyntheticOptions so;
   so.seed = 7;
   const auto run = MakeSyntheticRun(p, o, so);
@@ -227,7 +271,7 @@ TEST(ComplianceFilter, MismatchFlagIsQuietOnTheModelAndRisesAfterAHiddenEffect) 
 // covers the truth close to 95 % of the time.
 TEST(ComplianceFilter, NeesAndCoverageAreConsistentOverAHundredRuns) {
   const auto p = PaperParameters();
-  const FilterOptions o;
+  const FilterOptions o = ModelLogOptions();
   constexpr int kRuns = 100;
   double nees_sum = 0.0;
   std::size_t count = 0, covered[2] = {0, 0};
@@ -274,7 +318,9 @@ TEST(ComplianceFilter, NeesAndCoverageAreConsistentOverAHundredRuns) {
 // the standard deviations by up to 6 % (measured; the bound leaves room).
 void CompareWithDense(double compliance_scale_sd, double mean_tolerance_sd, double sd_tolerance) {
   const auto p = PaperParameters();
-  FilterOptions o;
+  // Known compliance: the model-log options, for the encoder variance's
+  // deflection allowance depends on tau and would make the model non-linear.
+  FilterOptions o = compliance_scale_sd < 0.01 ? ModelLogOptions() : FilterOptions{};
   o.gate_probability = 0.999999999;  // the dense filter has no gate
   o.compliance_scale_sd = compliance_scale_sd;
   SyntheticOptions so;

@@ -16,12 +16,16 @@
 //   tau+   = tau + noise σ_τ̇²·dt            (random walk)
 //   b+     = BacklashHysteresisStep(b, tau, r)  (models/effects/backlash_hysteresis.h;
 //            r = 1 − e^(−dt/T) while the joint moves, 0 at rest: BacklashRelax)
-//            + noise ((1 − S(tau/w)²)·u + σ_pinned²·dt), variance ≤ δ²/3, with
-//            u = σ_b²·dt (tip held, r = 0) or (1 − (1 − r)²)·δ²/3 (tip free)
+//            + noise ((1 − g)·u + c·g·(1 − g)·δ²/3 + σ_pinned²·dt), variance ≤ δ²/3,
+//            g = S(tau/w)², u = σ_b²·dt (tip held, r = 0) or (1 − (1 − r)²)·δ²/3
+//            (tip free); c = backlash_transit_noise with the tip held, 0 free
+//            (BacklashProcessVariance)
 //   s+     = s + noise σ_ṡ²·dt
 // Measurements:
-//   q_enc_j  = q_tip_j + b_j + s_j·K_j(L)·tau_j   (ComplianceEffect)   σ_enc
-//   tau_meas_j − tau0_j(q_enc, L) = tau_j          (bias torque)        σ_effort
+//   q_enc_j  = q_tip_j + b_j + s_j·K_j(L)·tau_j   (ComplianceEffect)
+//            variance σ_enc² + (ε·K_j(L)·tau_j)², ε = deflection_model_error
+//   tau_meas_j − tau0_j(q_enc, L) − J·θ̈_j = tau_j  (bias torque; J·θ̈ with the
+//            tip held, MotorMotion)                            σ_effort
 //   q_ref_j  = q_tip_j                             (when the log has it) σ_ref
 // Jacobians come from ceres::Jet. The joints share no state and no
 // measurement while no coupling effect is on, so the filter runs two 4-state
@@ -61,6 +65,12 @@ struct FilterOptions {
   /// tip only: with the tip held the encoders see b.
   double backlash_relax_time_s = 0.05;
   double backlash_pinned_rate_rad = 2e-4; ///< σ_b with the shaft loaded onto a wall, rad/√s
+  /// How uncertain the pull of a partial load is, held tip: the hysteresis
+  /// step pulls b by g = S² toward δ·S(tau/w), a smooth stand-in for a shaft
+  /// that meets its wall at a load the model cannot place inside w; the pull
+  /// gets variance this × g·(1 − g)·δ²/3 per sample (0 at no load and on the
+  /// wall).
+  double backlash_transit_noise = 10.0;
   double compliance_scale_rate = 0.0;     ///< σ_ṡ, 1/√s
   /// σ_free, rad/√s, tip not fixed. Large on purpose: a free tip is wherever
   /// the encoder puts it (less the deflection), and the prior of compliance and
@@ -68,6 +78,16 @@ struct FilterOptions {
   double free_tip_rate_rad = 1.0;
   /// The filter's dead-zone width is max(w from the parameters, this × σ_effort).
   double backlash_width_noise_multiple = 10.0;
+  /// Motor-side inertia J reflected at joints 1 and 2, kg·m². The effort
+  /// accelerates the motor as well as loading the shaft: with the tip held the
+  /// filter reads tau_meas − tau0 − J·θ̈ as the load, θ̈ from the encoders
+  /// through two low-pass stages of this time constant. 0 (the default): the whole effort
+  /// is load, right for logs drawn from the quasi-static model; the simulator's
+  /// arm (experiments JointDynamics) has 0.08.
+  double motor_inertia_kg_m2 = 0.0;
+  double acceleration_filter_time_s = 0.01;
+  /// Relative error of the deflection model, as encoder variance (this × K·tau)².
+  double deflection_model_error = 0.06;
   // Priors.
   double compliance_scale_sd = 0.1;       ///< s starts at 1 ± this
   double initial_torque_sd_nm = 1.0;
@@ -173,6 +193,25 @@ class ComplianceFilter {
 /// The fraction r of its wall an unloaded shaft forgets in a step of dt with
 /// this encoder increment: 1 − e^(−dt/T), weighted by min(1, |Δq|/3 counts).
 double BacklashRelax(const FilterOptions& options, double dt, double encoder_increment);
+
+/// The variance b's process adds in one step of dt (before the cap at the
+/// uniform's δ²/3), for load saturation S = S(tau/w), relax r (BacklashRelax)
+/// and clearance δ: unloaded diffusion, the transit's uncertain pull, and σ_pinned.
+double BacklashProcessVariance(const FilterOptions& options, double dt, bool tip_fixed,
+                               double relax, double saturation, double delta_rad);
+
+/// The motor's velocity and acceleration from encoder increments: the
+/// increment over dt low-passed to a velocity, its difference low-passed again
+/// (time constant options.acceleration_filter_time_s each; lag about 2T).
+struct MotorMotion {
+  double velocity_rad_s = 0.0;
+  double acceleration_rad_s2 = 0.0;
+  void Advance(const FilterOptions& options, double dt, double encoder_increment);
+  /// J·θ̈ (N·m), never beyond the effort limit: no motor accelerates faster
+  /// than its largest effort can drive it, and an encoder outlier must not
+  /// become a large torque.
+  double InertialTorque(const FilterOptions& options) const;
+};
 
 /// The output quantities of a joint-block pair, computed the same way for the
 /// filter and the smoother: corrected angles, covariance, tip correction.
