@@ -112,6 +112,10 @@ Command AddFilterCommand(CLI::App& app) {
   sub->add_option("--gate", f.gate_probability,
                   "Probability a measurement the model explains passes the χ² gate")
       ->capture_default_str();
+  sub->add_option("--motor-inertia", f.motor_inertia_kg_m2,
+                  "Motor-side inertia J of joints 1-2, kg·m²: J·θ̈ is taken out of the effort "
+                  "while the tip is held (0: off; the simulator's arm has 0.08)")
+      ->capture_default_str();
   sub->add_option("--mismatch-window", f.mismatch_window,
                   "Samples in the windowed NIS test for model mismatch")
       ->capture_default_str();
