@@ -50,7 +50,7 @@ void PrintHuman(const estimation::Diagnosis& d, const std::string& html) {
   }
   std::printf("\n  missing effect: %s\n", d.missing_effect ? d.missing_effect->c_str() : "none");
   std::printf("  candidate effects, best first:\n");
-  for (std::size_t i = 0; i < d.effects.size() && i < 5; ++i) {
+  for (std::size_t i = 0; i < d.effects.size(); ++i) {
     const auto& e = d.effects[i];
     char p[32];
     std::snprintf(p, sizeof p, e.p_value > 0.0 ? "%.2g" : "< 1e-300", e.p_value);

@@ -32,4 +32,4 @@ echo
 echo "== 4. diagnose: what the model lacks on data/divot_hidden_effect.csv"
 $pliant diagnose --params out/identified.json data/divot_hidden_effect.csv -o out/diagnosis
 echo
-echo "Open the report in a browser: $(pwd)/out/diagnosis/index.html"
+echo "Open the report in a browser: out/diagnosis/index.html"

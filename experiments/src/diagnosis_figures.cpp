@@ -162,17 +162,17 @@ std::vector<std::string> WriteDiagnosisFigures(const std::string& dir, const io:
   // Figs. 7-8: the worst segment of each joint, over time.
   const std::optional<double> worst[2] = {WorstSegment(log, d, 0), WorstSegment(log, d, 1)};
   const auto segments = ColumnIfAny(log, "segment");
+  auto in_worst = [&](int j, std::size_t row) -> std::optional<double> {
+    if (worst[j] && (*segments)[row] != *worst[j]) return std::nullopt;
+    return time[row];
+  };
   Figure segment_figure{"Worst segment of each joint: the tip stood still, so a right model "
                         "gives a flat zero residual (analogue of the paper's Figs. 7, 8)",
-                        {}};
+                        PerJoint(d, "time (s)", in_worst)};
   for (int j = 0; j < 2; ++j) {
-    auto panel = PerJoint(d, "time (s)", [&](int, std::size_t row) -> std::optional<double> {
-      if (worst[j] && (*segments)[row] != *worst[j]) return std::nullopt;
-      return time[row];
-    })[j];
+    PlotPanel& panel = segment_figure.panels[j];
     if (worst[j]) panel.title += ", segment " + std::to_string(static_cast<long>(*worst[j]));
     panel.title += j == 0 ? " (Fig. 7)" : " (Fig. 8)";
-    segment_figure.panels.push_back(std::move(panel));
   }
   write(segment_figure, "fig7_fig8_worst_segment.png");
   return paths;
