@@ -12,6 +12,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "diagnosis_report_internal.h"
 #include "pliant/io/atomic_file.h"
 
 namespace pliant::experiments {
@@ -105,6 +106,8 @@ std::string EffectsTable(const estimation::Diagnosis& d) {
       parameters += (parameters.empty() ? "" : "<br>") + Escaped(e.parameter_names[i]) + " = " +
                     Number("%.4g", e.parameters[i]);
       if (i < e.parameter_sd.size()) parameters += " ± " + Number("%.2g", e.parameter_sd[i]);
+      if (detail::AtBound(e.name, e.parameter_names[i], e.parameters[i]))
+        parameters += " <em>(at its bound)</em>";
     }
     std::string name = "<code>" + Escaped(e.name) + "</code>";
     if (e.missing) name += " <strong class=\"missing\">missing</strong>";

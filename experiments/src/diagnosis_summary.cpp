@@ -1,7 +1,24 @@
 // The --json summary of a diagnosis: the fields first, in its order.
+#include <cmath>
+
+#include "diagnosis_report_internal.h"
+#include "pliant/estimation/effect_catalogue.h"
 #include "pliant/experiments/diagnosis_report.h"
 
 namespace pliant::experiments {
+
+bool detail::AtBound(const std::string& effect, const std::string& parameter, double value) {
+  const auto& catalogue = estimation::EffectCatalogue::Global();
+  if (!catalogue.Contains(effect)) return false;
+  for (const auto& spec : catalogue.Create(effect)->Parameters()) {
+    if (spec.name != parameter) continue;
+    const double tolerance = 1e-6 * (spec.upper_bound - spec.lower_bound);
+    return std::abs(value - spec.lower_bound) <= tolerance ||
+           std::abs(value - spec.upper_bound) <= tolerance;
+  }
+  return false;
+}
+
 namespace {
 
 using Json = nlohmann::ordered_json;
@@ -25,7 +42,9 @@ Json Effect(const estimation::EffectFinding& e) {
     parameters.push_back(
         {{"name", e.parameter_names[i]},
          {"value", i < e.parameters.size() ? Json(e.parameters[i]) : Json(nullptr)},
-         {"sd", i < e.parameter_sd.size() ? Json(e.parameter_sd[i]) : Json(nullptr)}});
+         {"sd", i < e.parameter_sd.size() ? Json(e.parameter_sd[i]) : Json(nullptr)},
+         {"at_bound", i < e.parameters.size() &&
+                          detail::AtBound(e.name, e.parameter_names[i], e.parameters[i])}});
   }
   return Json{{"name", e.name},
               {"description", e.description},

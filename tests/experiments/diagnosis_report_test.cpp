@@ -8,6 +8,7 @@
 #include <iterator>
 
 #include "diagnosis_report_example.h"
+#include "pliant/estimation/effect_catalogue.h"
 #include "pliant/experiments/plot.h"
 #include "run_command.h"
 
@@ -42,6 +43,7 @@ TEST(DiagnosisSummaryJson, HasTheIssuesFieldsInOrderBestFirst) {
   EXPECT_DOUBLE_EQ(j["effects"][0]["score"].get<double>(), 0.9);
   EXPECT_DOUBLE_EQ(j["effects"][0]["size_sd"].get<double>(), 0.02);
   EXPECT_DOUBLE_EQ(j["effects"][0]["parameters"][1]["sd"].get<double>(), 0.0004);
+  EXPECT_EQ(j["effects"][0]["parameters"][0]["at_bound"], false);
   EXPECT_EQ(j["effects"][1]["name"], "effort_drift");
   ASSERT_EQ(j["channels"].size(), 3u);
   EXPECT_EQ(Keys(j["channels"][0], 3), (std::vector<std::string>{"name", "lag", "score"}));
@@ -54,6 +56,22 @@ TEST(DiagnosisSummaryJson, NoMissingEffectIsNull) {
   auto d = ExampleDiagnosis(log);
   d.missing_effect.reset();
   EXPECT_TRUE(DiagnosisSummaryJson(d)["missing_effect"].is_null());
+}
+
+// joint_friction's coulomb1 is bounded in the catalogue; a fit that ends on
+// the bound is no estimate, and the report says so.
+TEST(DiagnosisReport, AParameterOnItsCatalogueBoundIsMarked) {
+  const auto log = ExampleLog();
+  auto d = ExampleDiagnosis(log);
+  const auto specs = estimation::EffectCatalogue::Global().Create("joint_friction")->Parameters();
+  ASSERT_EQ(specs[2].name, "coulomb1");
+  d.effects[0].parameters[0] = specs[2].upper_bound;
+  EXPECT_EQ(DiagnosisSummaryJson(d)["effects"][0]["parameters"][0]["at_bound"], true);
+  EXPECT_EQ(DiagnosisSummaryJson(d)["effects"][0]["parameters"][1]["at_bound"], false);
+  const std::string html = DiagnosisReportHtml(log, d, {"log.csv", "p.json"}, {});
+  ASSERT_EQ(specs[2].upper_bound, 1.0);
+  EXPECT_NE(html.find("coulomb1 = 1 ± 0.002 <em>(at its bound)</em>"), std::string::npos);
+  EXPECT_EQ(html.find("viscous1 = 0.001 ± 0.0004 <em>"), std::string::npos);
 }
 
 TEST(DiagnosisReportHtml, TablesCarryTheNumbersRankedAndEscaped) {
