@@ -70,12 +70,16 @@ void PrintHuman(const estimation::Diagnosis& d, const std::string& html) {
 void RunDiagnose(DiagnoseCommandOptions o) {
   CheckEffectNames(o.diagnose.added_effects, "--add");
   CheckEffectNames(o.diagnose.candidates, "--candidate");
-  const auto parameters = io::ReadParameters(o.params_path);
-  const io::Log log = io::ReadLog(o.log_path);
-  const auto diagnosis = estimation::Diagnose(log, o.log_path, parameters, o.diagnose);
   if (o.report_dir.empty()) {
     o.report_dir = std::filesystem::path(o.log_path).stem().string() + "_diagnosis";
   }
+  if (std::filesystem::exists(o.report_dir) && !std::filesystem::is_directory(o.report_dir)) {
+    throw io::InputError(o.report_dir, 0, 0, "is a file, and the report is a directory",
+                         "give -o a directory name (it is created if missing)");
+  }
+  const auto parameters = io::ReadParameters(o.params_path);
+  const io::Log log = io::ReadLog(o.log_path);
+  const auto diagnosis = estimation::Diagnose(log, o.log_path, parameters, o.diagnose);
   const auto files =
       experiments::WriteDiagnosisReport(o.report_dir, log, diagnosis, {o.log_path, o.params_path});
   if (!o.json) return PrintHuman(diagnosis, files.html);

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -44,6 +45,17 @@ TEST(DiagnoseCommand, UnknownAddedEffectExitsTwoNamingItAndTheKnownOnes) {
   EXPECT_NE(r.err.find("--add: unknown effect 'joint_frction'"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("joint_friction"), std::string::npos) << "lists the known names";
   EXPECT_FALSE(fs::exists(dir / "report"));
+}
+
+TEST(DiagnoseCommand, AReportPathThatIsAFileExitsTwoAndLeavesIt) {
+  const auto dir = FreshDirectory("diagnose_report_is_file");
+  std::ofstream(dir / "report") << "keep me\n";
+  const auto r = RunIn(dir, kCli + " diagnose --params " + kParams + " " + kHiddenLog +
+                                " -o report");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_EQ(r.err, "report: is a file, and the report is a directory — give -o a directory name "
+                   "(it is created if missing)\n");
+  EXPECT_EQ(ReadText(dir / "report"), "keep me\n");
 }
 
 TEST(DiagnoseCommand, LogWithoutAReferenceExitsTwo) {
@@ -118,6 +130,7 @@ TEST(DiagnoseCommand, AUsersOwnEffectIsRankedAndFound) {
   const auto sim = RunIn(dir,
       kMyPliant + " simulate " + kSource + "/experiments/scenarios/divot.json -o one_sided.csv" +
           " --seed 3 --set log.every_n_periods=30 --set experiment.depths_m=[0.15]" +
+          " --set experiment.peak_torques_nm=[1.0]" +
           " --set 'hidden_effects={\"one_sided_compliance\":{\"c1\":0.01,\"c2\":0.01}}'");
   ASSERT_EQ(sim.exit_code, 0) << sim.err;
   const auto r =
