@@ -6,7 +6,12 @@
 // seeds with a missing effect; with --hidden NAME='{json}' it measures the
 // detection rate of that effect instead.
 //
-//   build/bench/diagnose_false_alarm_bench [--seeds 40] [--hidden 'NAME={"p":v}']
+//   build/bench/diagnose_false_alarm_bench [--seeds 40] [--hidden 'NAME={"p":v}'] [--tip-fixed]
+//       [--check PARAMETER=TRUE_VALUE]
+//
+// --check: coverage of the fitted parameter's sd — how often the truth lies
+// within 1.96 sd of the hidden effect's fitted value (95 % if the sd is honest).
+// --tip-fixed: no tracker in the log; the reference is the held tip.
 //
 // Not a Google Benchmark: a statistical study, run by hand (docs/diagnose-method.md).
 #include <cstdio>
@@ -23,8 +28,17 @@
 int main(int argc, char** argv) {
   int seeds = 40;
   std::string hidden = "{}", expected;
-  for (int i = 1; i + 1 < argc; i += 2) {
+  bool tip_fixed = false;
+  std::string checked;
+  double true_value = 0.0;
+  for (int i = 1; i < argc; ++i) tip_fixed |= !std::strcmp(argv[i], "--tip-fixed");
+  for (int i = 1; i + 1 < argc; ++i) {
     if (!std::strcmp(argv[i], "--seeds")) seeds = std::atoi(argv[i + 1]);
+    if (!std::strcmp(argv[i], "--check")) {
+      const std::string arg = argv[i + 1];
+      checked = arg.substr(0, arg.find('='));
+      true_value = std::atof(arg.substr(arg.find('=') + 1).c_str());
+    }
     if (!std::strcmp(argv[i], "--hidden")) {
       const std::string arg = argv[i + 1];
       const auto eq = arg.find('=');
@@ -32,15 +46,26 @@ int main(int argc, char** argv) {
       hidden = "{\"" + expected + "\":" + arg.substr(eq + 1) + "}";
     }
   }
-  const auto scenario = pliant::testing::ShortDivot(hidden);
+  const auto scenario = pliant::testing::ShortDivot(
+      hidden, {tip_fixed ? "sensors.tracker=false" : "sensors.tracker=true"});
   const auto model = pliant::testing::ModelOf(scenario);
-  int called = 0, right = 0;
+  int called = 0, right = 0, covered = 0, checks = 0;
+  double sum_z2 = 0.0;
   std::map<std::string, int> best_counts;
   double worst_score = -1.0;
   for (int run = 0; run < seeds; ++run) {
     const auto log = pliant::experiments::Simulate(scenario, 1000 + run).log;
     const auto d = pliant::estimation::Diagnose(log, "divot.csv", model, {});
     const auto& best = d.effects.front();
+    for (const auto& f : d.effects) {
+      for (std::size_t k = 0; f.name == expected && k < f.parameter_names.size(); ++k) {
+        if (f.parameter_names[k] != checked) continue;
+        const double z = (f.parameters[k] - true_value) / f.parameter_sd[k];
+        ++checks, covered += std::abs(z) <= 1.96, sum_z2 += z * z;
+        std::printf("           %s = %.5g ± %.2g (z %+.2f)\n", checked.c_str(), f.parameters[k],
+                    f.parameter_sd[k], z);
+      }
+    }
     ++best_counts[best.name];
     worst_score = std::max(worst_score, best.score);
     called += d.missing_effect.has_value();
@@ -59,6 +84,10 @@ int main(int argc, char** argv) {
                                : ("detections of " + expected).c_str(),
               int(k), seeds, 100.0 * k / n, 100.0 * lower, 100.0 * upper);
   std::printf("largest held-out reduction of the best candidate: %.3f\n", worst_score);
+  if (checks > 0) {
+    std::printf("coverage of %s ± 1.96 sd: %d of %d (%.1f %%), mean z² %.2f (1 if honest)\n",
+                checked.c_str(), covered, checks, 100.0 * covered / checks, sum_z2 / checks);
+  }
   for (const auto& [name, count] : best_counts) std::printf("  best %-26s %d seeds\n", name.c_str(), count);
   return 0;
 }

@@ -8,6 +8,7 @@
 
 #include "diagnosis_internal.h"
 #include "pliant/estimation/filter_log.h"
+#include "pliant/estimation/jacobian_check.h"
 #include "pliant/io/input_error.h"
 
 namespace pliant::estimation {
@@ -45,18 +46,22 @@ double SumOfSquares(const std::vector<double>& x) {
   return s;
 }
 
-// Held-out residual: each fold's samples under parameters fitted on the others.
+// Held-out residual: each fold's samples under parameters fitted on the
+// others (none fitted: the model as it is, profiled the same way, so that
+// before and after are compared alike).
 Residual CrossValidated(const Problem& problem, const diagnosis::BaseModel& model,
                         const std::vector<Term>& fixed, const std::vector<Term>& fitted) {
   Residual heldout(problem.samples.size(), Eigen::Vector2d::Zero());
   for (int fold = 0; fold < problem.folds; ++fold) {
     std::vector<bool> train(problem.groups);
     for (int g = 0; g < problem.groups; ++g) train[g] = problem.fold_of_group[g] != fold;
-    const auto fit = diagnosis::FitTerms(problem, model, fixed, fitted, train, false, 1.0);
     std::vector<Term> terms = fixed;
-    for (std::size_t t = 0; t < fitted.size(); ++t) {
-      terms.push_back(fitted[t]);
-      terms.back().parameters = fit.parameters[t];
+    if (!fitted.empty()) {
+      const auto fit = diagnosis::FitTerms(problem, model, fixed, fitted, train, false, 1.0);
+      for (std::size_t t = 0; t < fitted.size(); ++t) {
+        terms.push_back(fitted[t]);
+        terms.back().parameters = fit.parameters[t];
+      }
     }
     std::vector<bool> test(problem.groups);
     for (int g = 0; g < problem.groups; ++g) test[g] = !train[g];
@@ -149,9 +154,35 @@ EffectFinding Evaluate(const Problem& problem, const diagnosis::BaseModel& model
   return f;
 }
 
+// The log channels an effect reads: the inputs of the joint state its
+// contribution has a derivative with respect to (parameters moved one prior
+// sd off their defaults, at a light and a heavy load), in the log's names.
 std::vector<std::string> ChannelsOf(const EffectModel& effect) {
-  if (effect.Info().channel == models::Channel::kDeflection) return {"q1", "q2", "q3", "tau1", "tau2"};
-  return {"q1", "q2", "q3", "tau1", "tau2", "v1", "v2", "t"};
+  static const char* kLogName[models::kJointStateSize] = {
+      "q1", "q2", "q3", "tau1", "tau2", "v1", "v2", "t", "dtau1/dt", "dtau2/dt"};
+  std::vector<double> parameters;
+  for (const auto& spec : effect.Parameters()) {
+    const double moved = spec.default_value + spec.prior_sd;
+    parameters.push_back(moved <= spec.upper_bound ? moved : spec.default_value - spec.prior_sd);
+  }
+  std::vector<bool> used(models::kJointStateSize, false);
+  for (double load : {0.04, 0.7}) {
+    models::JointState<double> state;
+    state.encoder_angle_rad << 0.31, -0.27;
+    state.insertion_depth_m = 0.143;
+    state.external_torque_nm << load, -1.3 * load;
+    state.velocity_rad_s << 0.02, -0.01;
+    state.time_s = 12.5;
+    state.effort_rate_nm_s << 0.4, -0.7;
+    const auto check = CheckEffectJacobians(effect, parameters, state);
+    for (int k = 0; k < models::kJointStateSize; ++k)
+      used[k] = used[k] || check.autodiff.col(Eigen::Index(parameters.size()) + k).cwiseAbs().maxCoeff() > 0.0;
+  }
+  std::vector<std::string> channels;
+  for (int k = 0; k < models::kJointStateSize; ++k) {
+    if (used[k]) channels.push_back(kLogName[k]);
+  }
+  return channels;
 }
 
 }  // namespace
@@ -192,7 +223,7 @@ Diagnosis Diagnose(const io::Log& log, const std::string& log_path,
   d.added_effects = options.added_effects;
 
   const Residual before = diagnosis::Residuals(problem, model, {});
-  d.rms_before_mm = diagnosis::TipRmsMm(problem, before);
+  d.rms_before_mm = diagnosis::TipRmsMm(problem, CrossValidated(problem, model, {}, {}));
   std::vector<Term> fixed;
   Residual after = before;
   if (!added.empty()) {
@@ -203,13 +234,15 @@ Diagnosis Diagnose(const io::Log& log, const std::string& log_path,
     after = diagnosis::Residuals(problem, model, fixed);
   }
   const Residual baseline = fixed.empty() ? before : after;
-  const double baseline_rms = diagnosis::TipRmsMm(problem, baseline);
+  const double baseline_rms =
+      fixed.empty() ? d.rms_before_mm : diagnosis::TipRmsMm(problem, CrossValidated(problem, model, fixed, {}));
 
   for (const auto& name : names) {
     if (std::find(options.added_effects.begin(), options.added_effects.end(), name) !=
         options.added_effects.end())
       continue;
     const Term candidate = MakeTerm(name);
+    if (candidate.parameters.empty()) continue;  // nothing to fit: no size, no test
     EffectFinding f = Evaluate(problem, model, fixed, candidate, baseline, baseline_rms);
     f.channels = ChannelsOf(*candidate.effect);
     d.effects.push_back(std::move(f));

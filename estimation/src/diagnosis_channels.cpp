@@ -23,16 +23,25 @@ struct Channel {
   bool sign = false;           // two-valued: words say "> 0" / "< 0"
 };
 
+// Units of the canonical columns (docs/log-format.md); auxiliary ones have none known.
+std::string UnitOf(const std::string& name) {
+  if (name == "t") return "s";
+  if (name == "q3" || name == "q3_cmd") return "m";
+  if (name == "q1" || name == "q2" || name == "q1_cmd" || name == "q2_cmd") return "rad";
+  if (name == "v1" || name == "v2") return "rad/s";
+  if (name == "v3") return "m/s";
+  if (name == "tau1" || name == "tau2") return "N·m";
+  if (name == "tau3") return "N";
+  return "";
+}
+
 std::vector<Channel> Channels(const io::Log& log) {
   static const std::set<std::string> kSkipped = {"q1_ref", "q2_ref", "q1_true", "q2_true",
                                                  "tip_fixed"};
   std::vector<Channel> channels;
   for (const std::string& name : log.header.columns) {
     if (kSkipped.count(name)) continue;
-    const bool angle = name.size() >= 2 && name[0] == 'q' && name != "q3" && name.rfind("q3", 0) != 0;
-    const std::string unit = name == "t" ? "s" : angle ? "rad" : name.rfind("tau", 0) == 0 ? "N·m"
-                                                                                           : "";
-    channels.push_back({name, unit, log.Column(name), false});
+    channels.push_back({name, UnitOf(name), log.Column(name), false});
   }
   for (const char* j : {"1", "2"}) {
     const std::string tau = std::string("tau") + j, v = std::string("v") + j;

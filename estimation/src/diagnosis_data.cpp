@@ -64,6 +64,31 @@ std::vector<double> Velocity(const io::Log& log, const io::StandardColumns& c, i
   return v;
 }
 
+// Rate of the measured effort (N·m/s) by a least-squares line through the
+// samples within ±window/2: a plain difference would turn the effort noise
+// into a rate noise far larger than the rate.
+std::vector<double> EffortRate(const io::Log& log, const io::StandardColumns& c, int joint,
+                               double window_s) {
+  const int tau = joint == 0 ? c.tau1 : c.tau2;
+  const std::size_t n = log.Rows();
+  std::vector<double> rate(n, 0.0);
+  std::size_t lo = 0, hi = 0;
+  for (std::size_t r = 0; r < n; ++r) {
+    const double t = log.Value(r, c.t);
+    while (log.Value(lo, c.t) < t - 0.5 * window_s) ++lo;
+    while (hi + 1 < n && log.Value(hi + 1, c.t) <= t + 0.5 * window_s) ++hi;
+    double st = 0.0, sy = 0.0, stt = 0.0, sty = 0.0, m = 0.0;
+    for (std::size_t k = lo; k <= hi; ++k) {
+      const double dt = log.Value(k, c.t) - t, y = log.Value(k, tau);
+      if (!std::isfinite(y)) continue;
+      st += dt, sy += y, stt += dt * dt, sty += dt * y, m += 1.0;
+    }
+    const double denominator = m * stt - st * st;
+    if (m >= 3.0 && denominator > 0.0) rate[r] = (m * sty - st * sy) / denominator;
+  }
+  return rate;
+}
+
 }  // namespace
 
 BaseModel::BaseModel(const models::ModelParameters& parameters)
@@ -90,6 +115,8 @@ Problem BuildProblem(const io::Log& log, const std::string& log_path, const Base
   const int ref1 = problem.reference == "q*_ref" ? c.q1_ref : c.q1_true;
   const int ref2 = problem.reference == "q*_ref" ? c.q2_ref : c.q2_true;
   const std::vector<double> v[2] = {Velocity(log, c, 0), Velocity(log, c, 1)};
+  const std::vector<double> effort_rate[2] = {EffortRate(log, c, 0, options.effort_rate_window_s),
+                                              EffortRate(log, c, 1, options.effort_rate_window_s)};
   const auto& joints = model.parameters().joints;
   std::vector<const double*> values;
   for (const Term& term : added) values.push_back(term.parameters.data());
@@ -112,6 +139,7 @@ Problem BuildProblem(const io::Log& log, const std::string& log_path, const Base
     s.state.insertion_depth_m = log.Value(r, c.q3);
     s.state.velocity_rad_s = {v[0][r], v[1][r]};
     s.state.time_s = log.Value(r, c.t);
+    s.state.effort_rate_nm_s = {effort_rate[0][r], effort_rate[1][r]};
     const Eigen::Vector2d effort(log.Value(r, c.tau1), log.Value(r, c.tau2));
     if (!problem.profile_tip) s.reference_rad = {log.Value(r, ref1), log.Value(r, ref2)};
     if (!s.state.encoder_angle_rad.allFinite() || !std::isfinite(s.state.insertion_depth_m) ||

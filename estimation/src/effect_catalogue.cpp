@@ -12,6 +12,7 @@
 #include "pliant/models/effects/bias_torque_fourier.h"
 #include "pliant/models/effects/compliance.h"
 #include "pliant/models/effects/deflection_coupling.h"
+#include "pliant/models/effects/effort_delay.h"
 #include "pliant/models/effects/effort_drift.h"
 #include "pliant/models/effects/joint_friction.h"
 #include "pliant/models/effects/load_dependent_compliance.h"
@@ -51,6 +52,7 @@ EffectCatalogue& EffectCatalogue::Global() {
     c->Add<models::DeflectionCouplingEffect>();
     c->Add<models::BiasTorqueCrossJointEffect>();
     c->Add<models::BacklashDepthEffect>();
+    c->Add<models::EffortDelayEffect>();
     return c;
   }();
   return *catalogue;

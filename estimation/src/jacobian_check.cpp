@@ -15,7 +15,8 @@ template <typename T>
 std::vector<T> Flatten(const JointState<T>& s) {
   return {s.encoder_angle_rad[0],  s.encoder_angle_rad[1],  s.insertion_depth_m,
           s.external_torque_nm[0], s.external_torque_nm[1], s.velocity_rad_s[0],
-          s.velocity_rad_s[1],     s.time_s};
+          s.velocity_rad_s[1],     s.time_s,                s.effort_rate_nm_s[0],
+          s.effort_rate_nm_s[1]};
 }
 
 template <typename T>
@@ -26,6 +27,7 @@ JointState<T> Unflatten(const T* x) {
   s.external_torque_nm << x[3], x[4];
   s.velocity_rad_s << x[5], x[6];
   s.time_s = x[7];
+  s.effort_rate_nm_s << x[8], x[9];
   return s;
 }
 
@@ -78,7 +80,8 @@ std::string InputName(const EffectModel& effect, int column) {
 
 const std::vector<std::string>& JointStateInputNames() {
   static const std::vector<std::string> names = {
-      "q1", "q2", "insertion_depth_m", "external_torque1", "external_torque2", "v1", "v2", "t"};
+      "q1", "q2", "insertion_depth_m", "external_torque1", "external_torque2", "v1", "v2", "t",
+      "effort_rate1", "effort_rate2"};
   return names;
 }
 

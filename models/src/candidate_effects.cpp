@@ -1,6 +1,7 @@
 // Parameter specs of the effects added as diagnosis candidates (issue 6).
 #include "pliant/models/effects/backlash_depth.h"
 #include "pliant/models/effects/bias_torque_cross_joint.h"
+#include "pliant/models/effects/effort_delay.h"
 
 namespace pliant::models {
 
@@ -19,6 +20,12 @@ std::vector<ParameterSpec> BacklashDepthEffect::Parameters() const {
 std::vector<ParameterSpec> BiasTorqueCrossJointEffect::Parameters() const {
   // A few hundredths of a N·m: the spread of the paper's Fig. 4 bias curves.
   return {{"cross1", "N·m", 0.0, -0.5, 0.5, 0.05}, {"cross2", "N·m", 0.0, -0.5, 0.5, 0.05}};
+}
+
+std::vector<ParameterSpec> EffortDelayEffect::Parameters() const {
+  // The dVRK's effort is the motor current, filtered and read a bus cycle or
+  // two after the encoders: milliseconds to tens of milliseconds.
+  return {{"delay", "s", 0.0, -0.05, 0.2, 0.02}};
 }
 
 }  // namespace pliant::models

@@ -110,6 +110,25 @@ TEST(DiagnoseExtension, AUserEffectJoinsTheCandidatesAndIsFound) {
   EXPECT_GE(d.effects[0].score, 0.5);
 }
 
+// A log as a user might record it: no segment column and no velocities (the
+// diagnosis differentiates the encoders and cuts time blocks for the folds).
+TEST(DiagnoseInput, ALogWithoutSegmentsOrVelocitiesIsStillDiagnosed) {
+  const auto scenario = ShortDivot(R"({"joint_friction":{"coulomb1":0.05,"coulomb2":0.05}})");
+  const io::Log full = experiments::Simulate(scenario, 4).log;
+  io::Log log;
+  log.header.columns = {"t", "q1", "q2", "q3", "tau1", "tau2", "q1_ref", "q2_ref"};
+  for (std::size_t r = 0; r < full.Rows(); ++r) {
+    for (const auto& name : log.header.columns)
+      log.values.push_back(full.Value(r, full.header.Index(name)));
+  }
+  const Diagnosis d = Diagnose(log, "recorded.csv", ModelOf(scenario), {});
+  std::printf("  best %s: held-out reduction %.3f, rms %.4f -> %.4f mm\n",
+              d.effects[0].name.c_str(), d.effects[0].score, d.rms_before_mm, d.rms_after_mm);
+  EXPECT_EQ(d.reference, "q*_ref");
+  EXPECT_EQ(d.missing_effect.value_or("none"), "joint_friction");
+  EXPECT_GE(d.effects[0].score, 0.5);
+}
+
 TEST(DiagnoseInput, ALogWithoutAReferenceOrAnUnknownEffectIsAnInputError) {
   const auto scenario = ShortDivot("{}");
   const io::Log log = experiments::Simulate(scenario, 1).log;

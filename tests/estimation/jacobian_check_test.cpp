@@ -14,6 +14,7 @@ models::JointState<double> SmoothState() {
   s.external_torque_nm << 0.043, -0.121;
   s.velocity_rad_s << 0.02, -0.01;
   s.time_s = 12.5;
+  s.effort_rate_nm_s << 0.4, -0.7;
   return s;
 }
 

@@ -84,6 +84,7 @@ struct JointState {
   Vec2<T> external_torque_nm = Vec2<T>::Zero();  ///< tau_ext (deflection effects only)
   Vec2<T> velocity_rad_s = Vec2<T>::Zero();      ///< v1, v2
   T time_s = T(0.0);                             ///< log time, s
+  Vec2<T> effort_rate_nm_s = Vec2<T>::Zero();    ///< d tau_meas / dt (the effort-delay effect)
 
   /// The same state in another scalar type (e.g. double -> ceres::Jet).
   template <typename U>
@@ -94,12 +95,14 @@ struct JointState {
     out.external_torque_nm = external_torque_nm.template cast<U>();
     out.velocity_rad_s = velocity_rad_s.template cast<U>();
     out.time_s = U(time_s);
+    out.effort_rate_nm_s = effort_rate_nm_s.template cast<U>();
     return out;
   }
 };
 
 /// Number of scalar inputs in a JointState, in the order
-/// q1, q2, q3, tau_ext1, tau_ext2, v1, v2, t (used by the Jacobian check).
-inline constexpr int kJointStateSize = 8;
+/// q1, q2, q3, tau_ext1, tau_ext2, v1, v2, t, tau_rate1, tau_rate2 (used by
+/// the Jacobian check).
+inline constexpr int kJointStateSize = 10;
 
 }  // namespace pliant::models
