@@ -32,7 +32,8 @@ void CheckEffectNames(const std::vector<std::string>& names, const char* option)
   for (const auto& name : names) {
     if (estimation::EffectCatalogue::Global().Contains(name)) continue;
     std::string known;
-    for (const auto& k : estimation::CandidateEffectNames()) known += (known.empty() ? "" : ", ") + k;
+    for (const auto& k : estimation::CandidateEffectNames())
+      known += (known.empty() ? "" : ", ") + k;
     throw io::InputError(option, 0, 0, "unknown effect '" + name + "'",
                          "use one of: " + known + " (docs/effects.md)");
   }
@@ -55,8 +56,8 @@ void PrintHuman(const estimation::Diagnosis& d, const std::string& html) {
     char p[32];
     std::snprintf(p, sizeof p, e.p_value > 0.0 ? "%.2g" : "< 1e-300", e.p_value);
     std::printf("    %zu. %-26s removes %5.1f %% of the error  p %-8s  size %.3g ± %.2g %s%s\n",
-                i + 1, e.name.c_str(), 100.0 * e.score, p, e.size, e.size_sd,
-                e.size_unit.c_str(), e.missing ? "  <- missing" : "");
+                i + 1, e.name.c_str(), 100.0 * e.score, p, e.size, e.size_sd, e.size_unit.c_str(),
+                e.missing ? "  <- missing" : "");
   }
   std::printf("  channels that explain the residual, best first:\n");
   for (std::size_t i = 0; i < d.channels.size() && i < 3; ++i) {

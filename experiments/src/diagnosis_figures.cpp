@@ -124,10 +124,8 @@ std::vector<std::string> WriteDiagnosisFigures(const std::string& dir, const io:
   };
   const std::vector<double> time = log.Column("t");
 
-  write({"Residual of the model against time", PerJoint(d, "time (s)",
-                                                        [&](int, std::size_t row) {
-                                                          return std::optional(time[row]);
-                                                        })},
+  write({"Residual of the model against time",
+         PerJoint(d, "time (s)", [&](int, std::size_t row) { return std::optional(time[row]); })},
         "residual_time.png");
 
   // The channels that explain the residual best (one panel each, up to three).
@@ -166,9 +164,10 @@ std::vector<std::string> WriteDiagnosisFigures(const std::string& dir, const io:
     if (worst[j] && (*segments)[row] != *worst[j]) return std::nullopt;
     return time[row];
   };
-  Figure segment_figure{"Worst segment of each joint: the tip stood still, so a right model "
-                        "gives a flat zero residual (analogue of the paper's Figs. 7, 8)",
-                        PerJoint(d, "time (s)", in_worst)};
+  Figure segment_figure{
+      "Worst segment of each joint: the tip stood still, so a right model "
+      "gives a flat zero residual (analogue of the paper's Figs. 7, 8)",
+      PerJoint(d, "time (s)", in_worst)};
   for (int j = 0; j < 2; ++j) {
     PlotPanel& panel = segment_figure.panels[j];
     if (worst[j]) panel.title += ", segment " + std::to_string(static_cast<long>(*worst[j]));

@@ -31,11 +31,20 @@ std::string Escaped(const std::string& text) {
   std::string out;
   for (char c : text) {
     switch (c) {
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '&': out += "&amp;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '&':
+        out += "&amp;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -83,7 +92,8 @@ std::string StatisticsTable(const estimation::Diagnosis& d) {
   t += Row({"filter's mean NIS per degree of freedom (95 % band)",
             Number("%.2f", b.mean_nis) + " (" + pair("%.2f", b.nis_band[0], b.nis_band[1]) + ")",
             "—", "1 when the noise model is right"});
-  t += Row({"Ljung–Box Q (p): whiteness", Number("%.1f", b.ljung_box_q) + " (" + P(b.ljung_box_p) + ")",
+  t += Row({"Ljung–Box Q (p): whiteness",
+            Number("%.1f", b.ljung_box_q) + " (" + P(b.ljung_box_p) + ")",
             Number("%.1f", a.ljung_box_q) + " (" + P(a.ljung_box_p) + ")", "small p: not white"});
   t += Row({"Jarque–Bera (p): normality",
             Number("%.1f", b.normality_statistic) + " (" + P(b.normality_p) + ")",
@@ -94,9 +104,8 @@ std::string StatisticsTable(const estimation::Diagnosis& d) {
 }
 
 std::string EffectsTable(const estimation::Diagnosis& d) {
-  std::string t = "<table>\n" + Row({"#", "effect", "what it is", "channels", "error removed",
-                                     "p", "ΔAIC", "held-out RMS (mm)", "size",
-                                     "fitted parameters"},
+  std::string t = "<table>\n" + Row({"#", "effect", "what it is", "channels", "error removed", "p",
+                                     "ΔAIC", "held-out RMS (mm)", "size", "fitted parameters"},
                                     "th");
   int rank = 0;
   for (const auto& e : d.effects) {
@@ -111,13 +120,12 @@ std::string EffectsTable(const estimation::Diagnosis& d) {
     }
     std::string name = "<code>" + Escaped(e.name) + "</code>";
     if (e.missing) name += " <strong class=\"missing\">missing</strong>";
-    t += Row({std::to_string(++rank), name, Escaped(e.description), channels,
-              Number("%.1f %%", 100.0 * e.score), P(e.p_value), Number("%.1f", e.delta_aic),
-              Number("%.3f", e.heldout_rms_before_mm) + " → " +
-                  Number("%.3f", e.heldout_rms_after_mm),
-              Number("%.3g", e.size) + " ± " + Number("%.2g", e.size_sd) + " " +
-                  Escaped(e.size_unit),
-              parameters});
+    t += Row(
+        {std::to_string(++rank), name, Escaped(e.description), channels,
+         Number("%.1f %%", 100.0 * e.score), P(e.p_value), Number("%.1f", e.delta_aic),
+         Number("%.3f", e.heldout_rms_before_mm) + " → " + Number("%.3f", e.heldout_rms_after_mm),
+         Number("%.3g", e.size) + " ± " + Number("%.2g", e.size_sd) + " " + Escaped(e.size_unit),
+         parameters});
   }
   return t + "</table>\n";
 }
@@ -170,7 +178,8 @@ std::string Caption(const std::string& file) {
            "lag): a trend here names what the model misses.";
   if (file == "fig5_residual_effort.png")
     return "The residual against the measured effort, per joint (the paper's Fig. 5 plots effort "
-           "against angle on the clamped beam): a slope or a loop is a load effect the model lacks.";
+           "against angle on the clamped beam): a slope or a loop is a load effect the model "
+           "lacks.";
   if (file == "fig7_fig8_worst_segment.png")
     return "The worst segment of each joint over time (the paper's Figs. 7, 8: the tip is held, so "
            "the corrected angle should stay constant).";
@@ -187,9 +196,9 @@ std::string DiagnosisReportHtml(const io::Log& log, const estimation::Diagnosis&
     << "<title>pliant diagnose — " << Escaped(sources.log_path) << "</title>\n"
     << kStyle << kRenderCheck << "</head>\n<body>\n"
     << "<h1>Where the model fails: " << Escaped(sources.log_path) << "</h1>\n"
-    << "<p>Parameters <code>" << Escaped(sources.parameters_path) << "</code>; residual against <code>"
-    << Escaped(d.reference) << "</code> over " << d.series.row.size() << " of " << log.Rows()
-    << " rows";
+    << "<p>Parameters <code>" << Escaped(sources.parameters_path)
+    << "</code>; residual against <code>" << Escaped(d.reference) << "</code> over "
+    << d.series.row.size() << " of " << log.Rows() << " rows";
   if (!d.added_effects.empty()) {
     h << "; effects added (<code>--add</code>):";
     for (const auto& name : d.added_effects) h << " <code>" << Escaped(name) << "</code>";
@@ -202,8 +211,8 @@ std::string DiagnosisReportHtml(const io::Log& log, const estimation::Diagnosis&
   }
   h << "Held-out RMS error at the tip " << Number("%.3f", d.rms_before_mm) << " mm → "
     << Number("%.3f", d.rms_after_mm) << " mm.</p>\n"
-    << "<h2>Before and after</h2>\n" << StatisticsTable(d)
-    << "<h2>Candidate effects, best first</h2>\n"
+    << "<h2>Before and after</h2>\n"
+    << StatisticsTable(d) << "<h2>Candidate effects, best first</h2>\n"
     << "<p>Each candidate is fitted as an extension of the model; \"error removed\" is the "
        "held-out RMS reduction, p its significance adjusted for the candidates tried "
        "(method: docs/diagnose-method.md).</p>\n"
@@ -211,9 +220,9 @@ std::string DiagnosisReportHtml(const io::Log& log, const estimation::Diagnosis&
     << ChannelsTable(d) << "<h2>Plots</h2>\n";
   for (const auto& path : figure_paths) {
     const std::string name = fs::path(path).filename().string();
-    h << "<figure><img class=\"plot\" alt=\"" << Escaped(name)
-      << "\" src=\"data:image/png;base64," << Base64(ReadBytes(path)) << "\"><figcaption>"
-      << Escaped(Caption(name)) << "</figcaption></figure>\n";
+    h << "<figure><img class=\"plot\" alt=\"" << Escaped(name) << "\" src=\"data:image/png;base64,"
+      << Base64(ReadBytes(path)) << "\"><figcaption>" << Escaped(Caption(name))
+      << "</figcaption></figure>\n";
   }
   h << "<div id=\"render-check\" data-expected=\"" << figure_paths.size()
     << "\" data-rendered=\"0\"></div>\n</body>\n</html>\n";

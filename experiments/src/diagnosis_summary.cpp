@@ -63,8 +63,8 @@ Json Effect(const estimation::EffectFinding& e) {
 }
 
 Json Channel(const estimation::ChannelFinding& c) {
-  return Json{{"name", c.name},     {"lag", c.lag},         {"score", c.score},
-              {"joint", c.joint},   {"p_value", c.p_value}, {"finding", c.finding}};
+  return Json{{"name", c.name},   {"lag", c.lag},         {"score", c.score},
+              {"joint", c.joint}, {"p_value", c.p_value}, {"finding", c.finding}};
 }
 
 }  // namespace

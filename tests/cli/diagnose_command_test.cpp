@@ -28,9 +28,8 @@ CommandResult RunIn(const fs::path& dir, const std::string& command) {
 TEST(DiagnoseCommand, MissingLogExitsTwoNamingItAndWritesNoReport) {
   const auto dir = FreshDirectory("diagnose_missing_log");
   const std::string log = (dir / "missing.csv").string();
-  const auto r = RunCommand(kCli + " diagnose --params " + kParams + " " + log + " -o " +
-                                (dir / "report").string(),
-                            dir);
+  const auto r = RunCommand(
+      kCli + " diagnose --params " + kParams + " " + log + " -o " + (dir / "report").string(), dir);
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_NE(r.err.find(log), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir / "report"));
@@ -50,11 +49,12 @@ TEST(DiagnoseCommand, UnknownAddedEffectExitsTwoNamingItAndTheKnownOnes) {
 TEST(DiagnoseCommand, AReportPathThatIsAFileExitsTwoAndLeavesIt) {
   const auto dir = FreshDirectory("diagnose_report_is_file");
   std::ofstream(dir / "report") << "keep me\n";
-  const auto r = RunIn(dir, kCli + " diagnose --params " + kParams + " " + kHiddenLog +
-                                " -o report");
+  const auto r =
+      RunIn(dir, kCli + " diagnose --params " + kParams + " " + kHiddenLog + " -o report");
   EXPECT_EQ(r.exit_code, 2) << r.err;
-  EXPECT_EQ(r.err, "report: is a file, and the report is a directory — give -o a directory name "
-                   "(it is created if missing)\n");
+  EXPECT_EQ(r.err,
+            "report: is a file, and the report is a directory — give -o a directory name "
+            "(it is created if missing)\n");
   EXPECT_EQ(ReadText(dir / "report"), "keep me\n");
 }
 
@@ -62,9 +62,9 @@ TEST(DiagnoseCommand, LogWithoutAReferenceExitsTwo) {
   const auto dir = FreshDirectory("diagnose_no_reference");
   // bias_sweep.csv: the tip is free, so nothing says where it really was...
   // except q*_true; strip those to leave no reference at all.
-  const auto r = RunIn(dir, "grep -v '^#' " + kSource +
-                                "/data/bias_sweep.csv | cut -d, -f1-6 > free.csv && " + kCli +
-                                " diagnose --params " + kParams + " free.csv -o report");
+  const auto r =
+      RunIn(dir, "grep -v '^#' " + kSource + "/data/bias_sweep.csv | cut -d, -f1-6 > free.csv && " +
+                     kCli + " diagnose --params " + kParams + " free.csv -o report");
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_NE(r.err.find("free.csv"), std::string::npos) << r.err;
 }
@@ -96,8 +96,8 @@ TEST(DiagnoseCommand, FindsTheShippedLogsHiddenEffectAndWritesTheReport) {
   const auto j = Summary(r);
   std::vector<std::string> keys;
   for (auto it = j.begin(); it != j.end() && keys.size() < 5; ++it) keys.push_back(it.key());
-  EXPECT_EQ(keys, (std::vector<std::string>{"rms_before", "rms_after", "missing_effect",
-                                            "effects", "channels"}));
+  EXPECT_EQ(keys, (std::vector<std::string>{"rms_before", "rms_after", "missing_effect", "effects",
+                                            "channels"}));
   EXPECT_EQ(j["missing_effect"], "deflection_coupling") << r.out;
   ASSERT_FALSE(j["effects"].empty());
   EXPECT_EQ(j["effects"][0]["name"], "deflection_coupling");
@@ -127,11 +127,12 @@ TEST(DiagnoseCommand, AddingTheEffectRefitsAndTheErrorFalls) {
 // on a log where it is the hidden effect, it is the one found missing.
 TEST(DiagnoseCommand, AUsersOwnEffectIsRankedAndFound) {
   const auto dir = FreshDirectory("diagnose_user_effect");
-  const auto sim = RunIn(dir,
-      kMyPliant + " simulate " + kSource + "/experiments/scenarios/divot.json -o one_sided.csv" +
-          " --seed 3 --set log.every_n_periods=30 --set experiment.depths_m=[0.15]" +
-          " --set experiment.peak_torques_nm=[1.0]" +
-          " --set 'hidden_effects={\"one_sided_compliance\":{\"c1\":0.01,\"c2\":0.01}}'");
+  const auto sim = RunIn(
+      dir, kMyPliant + " simulate " + kSource +
+               "/experiments/scenarios/divot.json -o one_sided.csv" +
+               " --seed 3 --set log.every_n_periods=30 --set experiment.depths_m=[0.15]" +
+               " --set experiment.peak_torques_nm=[1.0]" +
+               " --set 'hidden_effects={\"one_sided_compliance\":{\"c1\":0.01,\"c2\":0.01}}'");
   ASSERT_EQ(sim.exit_code, 0) << sim.err;
   const auto r =
       RunIn(dir, kMyPliant + " diagnose --json --params " + kParams + " one_sided.csv -o report");

@@ -47,7 +47,8 @@ TEST(DiagnosisReportInChromium, EveryPlotRendersAndTheScreenshotIsNotBlank) {
   ASSERT_EQ(dom.exit_code, 0) << dom.err;
   std::smatch found;
   ASSERT_TRUE(std::regex_search(
-      dom.out, found, std::regex("id=\"render-check\" data-expected=\"(\\d+)\" data-rendered=\"(\\d+)\"")))
+      dom.out, found,
+      std::regex("id=\"render-check\" data-expected=\"(\\d+)\" data-rendered=\"(\\d+)\"")))
       << dom.out.substr(0, 2000);
   EXPECT_EQ(found[1], "4");
   EXPECT_EQ(found[2], "4") << "plots the browser decoded and laid out";
@@ -65,8 +66,8 @@ TEST(DiagnosisReportInChromium, EveryPlotRendersAndTheScreenshotIsNotBlank) {
   const auto blank_bytes = screenshot(blank, dir / "blank.png");
   const auto report_bytes = screenshot(files.html, dir / "report.png");
   ASSERT_GT(blank_bytes, 0u);
-  EXPECT_GT(report_bytes, 10 * blank_bytes) << "report " << report_bytes << " B, blank "
-                                            << blank_bytes << " B";
+  EXPECT_GT(report_bytes, 10 * blank_bytes)
+      << "report " << report_bytes << " B, blank " << blank_bytes << " B";
 }
 
 }  // namespace

@@ -30,14 +30,14 @@ TEST(DiagnosisSummaryJson, HasTheIssuesFieldsInOrderBestFirst) {
   const auto log = ExampleLog();
   const auto j = DiagnosisSummaryJson(ExampleDiagnosis(log));
   EXPECT_EQ(Keys(j, 5), (std::vector<std::string>{"rms_before", "rms_after", "missing_effect",
-                                                   "effects", "channels"}));
+                                                  "effects", "channels"}));
   EXPECT_DOUBLE_EQ(j["rms_before"].get<double>(), 1.234);
   EXPECT_DOUBLE_EQ(j["rms_after"].get<double>(), 0.123);
   EXPECT_EQ(j["missing_effect"], "joint_friction");
   ASSERT_EQ(j["effects"].size(), 2u);
   EXPECT_EQ(Keys(j["effects"][0], 7),
-            (std::vector<std::string>{"name", "description", "channels", "score", "p_value",
-                                      "size", "size_sd"}));
+            (std::vector<std::string>{"name", "description", "channels", "score", "p_value", "size",
+                                      "size_sd"}));
   EXPECT_EQ(j["effects"][0]["name"], "joint_friction");
   EXPECT_EQ(j["effects"][0]["channels"], (nlohmann::ordered_json{"v1", "v2"}));
   EXPECT_DOUBLE_EQ(j["effects"][0]["score"].get<double>(), 0.9);
@@ -76,7 +76,8 @@ TEST(DiagnosisReport, AParameterOnItsCatalogueBoundIsMarked) {
 
 TEST(DiagnosisReportHtml, TablesCarryTheNumbersRankedAndEscaped) {
   const auto log = ExampleLog();
-  const std::string html = DiagnosisReportHtml(log, ExampleDiagnosis(log), {"my log.csv", "p.json"}, {});
+  const std::string html =
+      DiagnosisReportHtml(log, ExampleDiagnosis(log), {"my log.csv", "p.json"}, {});
   EXPECT_NE(html.find("Missing effect: <strong><code>joint_friction</code>"), std::string::npos);
   EXPECT_NE(html.find("1.234 mm → 0.123 mm"), std::string::npos);
   EXPECT_NE(html.find("<td>1.000 / 0.000</td><td>0.100 / 0.000</td>"), std::string::npos)
