@@ -4,7 +4,9 @@
 #   1. identifies the instrument from the simulated calibration logs (bias
 #      sweep + clamped beam), with the covariance of every parameter;
 #   2. corrects the simulated divot pushes with the paper's equation (2);
-#   3. filters them with the EKF and smooths them with the RTS smoother.
+#   3. filters them with the EKF and smooths them with the RTS smoother;
+#   4. diagnoses a log with an effect the model lacks: which one, and the
+#      error with it added, in an HTML report (out/diagnosis/index.html).
 # Outputs land in out/; each step prints its tip error against the truth.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -26,3 +28,8 @@ $pliant correct --params out/identified.json --model paper data/divot.csv -o out
 echo
 echo "== 3. filter: the EKF and the RTS smoother on the same log"
 $pliant filter --smooth --params out/identified.json data/divot.csv -o out/divot_filter.csv
+echo
+echo "== 4. diagnose: what the model lacks on data/divot_hidden_effect.csv"
+$pliant diagnose --params out/identified.json data/divot_hidden_effect.csv -o out/diagnosis
+echo
+echo "Open the report in a browser: out/diagnosis/index.html"

@@ -13,3 +13,8 @@ run(${CMAKE_COMMAND} -S ${CONSUMER_SOURCE_DIR} -B ${WORK_DIR}/build
     -DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix -DCMAKE_BUILD_TYPE=Release)
 run(${CMAKE_COMMAND} --build ${WORK_DIR}/build)
 run(${WORK_DIR}/build/consumer)
+# A user's own pliant command with their effect (examples/my_effect), also from outside.
+run(${CMAKE_COMMAND} -S ${MY_EFFECT_SOURCE_DIR} -B ${WORK_DIR}/my_effect
+    -DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix -DCMAKE_BUILD_TYPE=Release)
+run(${CMAKE_COMMAND} --build ${WORK_DIR}/my_effect)
+run(${WORK_DIR}/my_effect/my_pliant --version)

@@ -1,0 +1,151 @@
+// pliant diagnose: exit codes, the --json summary, the report's files, and a
+// user's own effect (examples/my_effect) ranked with the built-in ones.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "run_command.h"
+
+namespace pliant::testing {
+namespace {
+
+namespace fs = std::filesystem;
+const std::string kCli = PLIANT_CLI;
+const std::string kMyPliant = PLIANT_MY_PLIANT;
+const std::string kSource = PLIANT_SOURCE_DIR;
+const std::string kParams = kSource + "/data/paper.json";
+const std::string kHiddenLog = kSource + "/data/divot_hidden_effect.csv";
+
+// Runs `command` with the test's directory as the working directory.
+CommandResult RunIn(const fs::path& dir, const std::string& command) {
+  return RunCommand("cd '" + dir.string() + "' && " + command, dir);
+}
+
+TEST(DiagnoseCommand, MissingLogExitsTwoNamingItAndWritesNoReport) {
+  const auto dir = FreshDirectory("diagnose_missing_log");
+  const std::string log = (dir / "missing.csv").string();
+  const auto r = RunCommand(
+      kCli + " diagnose --params " + kParams + " " + log + " -o " + (dir / "report").string(), dir);
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find(log), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "report"));
+}
+
+TEST(DiagnoseCommand, UnknownAddedEffectExitsTwoNamingItAndTheKnownOnes) {
+  const auto dir = FreshDirectory("diagnose_bad_add");
+  const auto r = RunCommand(kCli + " diagnose --params " + kParams + " " + kHiddenLog +
+                                " --add joint_frction -o " + (dir / "report").string(),
+                            dir);
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("--add: unknown effect 'joint_frction'"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("joint_friction"), std::string::npos) << "lists the known names";
+  EXPECT_FALSE(fs::exists(dir / "report"));
+}
+
+TEST(DiagnoseCommand, AReportPathThatIsAFileExitsTwoAndLeavesIt) {
+  const auto dir = FreshDirectory("diagnose_report_is_file");
+  std::ofstream(dir / "report") << "keep me\n";
+  const auto r =
+      RunIn(dir, kCli + " diagnose --params " + kParams + " " + kHiddenLog + " -o report");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_EQ(r.err,
+            "report: is a file, and the report is a directory — give -o a directory name "
+            "(it is created if missing)\n");
+  EXPECT_EQ(ReadText(dir / "report"), "keep me\n");
+}
+
+TEST(DiagnoseCommand, LogWithoutAReferenceExitsTwo) {
+  const auto dir = FreshDirectory("diagnose_no_reference");
+  // bias_sweep.csv: the tip is free, so nothing says where it really was...
+  // except q*_true; strip those to leave no reference at all.
+  const auto r =
+      RunIn(dir, "grep -v '^#' " + kSource + "/data/bias_sweep.csv | cut -d, -f1-6 > free.csv && " +
+                     kCli + " diagnose --params " + kParams + " free.csv -o report");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("free.csv"), std::string::npos) << r.err;
+}
+
+nlohmann::ordered_json Summary(const CommandResult& r) {
+  try {
+    return nlohmann::ordered_json::parse(r.out);
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << e.what() << "\n" << r.out << r.err;
+    return {};
+  }
+}
+
+bool Names(const nlohmann::ordered_json& list, const std::string& name) {
+  for (const auto& item : list) {
+    if (item["name"] == name) return true;
+  }
+  return false;
+}
+
+// The shipped log hides deflection_coupling (data/README.md): the diagnosis
+// must name it, rank it first, and the report must be where --json says.
+TEST(DiagnoseCommand, FindsTheShippedLogsHiddenEffectAndWritesTheReport) {
+  const auto dir = FreshDirectory("diagnose_hidden");
+  const auto r = RunCommand(kCli + " diagnose --json --params " + kParams + " " + kHiddenLog +
+                                " -o " + (dir / "report").string(),
+                            dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = Summary(r);
+  std::vector<std::string> keys;
+  for (auto it = j.begin(); it != j.end() && keys.size() < 5; ++it) keys.push_back(it.key());
+  EXPECT_EQ(keys, (std::vector<std::string>{"rms_before", "rms_after", "missing_effect", "effects",
+                                            "channels"}));
+  EXPECT_EQ(j["missing_effect"], "deflection_coupling") << r.out;
+  ASSERT_FALSE(j["effects"].empty());
+  EXPECT_EQ(j["effects"][0]["name"], "deflection_coupling");
+  for (std::size_t i = 1; i < j["effects"].size(); ++i) {
+    EXPECT_GE(j["effects"][i - 1]["score"].get<double>(), j["effects"][i]["score"].get<double>());
+  }
+  EXPECT_LT(j["rms_after"].get<double>(), 0.5 * j["rms_before"].get<double>());
+  ASSERT_FALSE(j["channels"].empty());
+  EXPECT_TRUE(fs::exists(dir / "report" / "index.html"));
+  EXPECT_TRUE(fs::exists(dir / "report" / "summary.json"));
+  EXPECT_EQ(j["report"], (dir / "report" / "index.html").string());
+}
+
+TEST(DiagnoseCommand, AddingTheEffectRefitsAndTheErrorFalls) {
+  const auto dir = FreshDirectory("diagnose_add");
+  const auto r = RunIn(dir, kCli + " diagnose --params " + kParams + " " + kHiddenLog +
+                                " --add deflection_coupling -o report");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("(with deflection_coupling)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("report: report/index.html"), std::string::npos) << r.out;
+  const auto j = nlohmann::ordered_json::parse(ReadText(dir / "report" / "summary.json"));
+  EXPECT_EQ(j["added_effects"], (nlohmann::ordered_json{"deflection_coupling"}));
+  EXPECT_LT(j["rms_after"].get<double>(), 0.5 * j["rms_before"].get<double>());
+}
+
+// examples/my_effect: a user's effect enters the same catalogue and ranking;
+// on a log where it is the hidden effect, it is the one found missing.
+TEST(DiagnoseCommand, AUsersOwnEffectIsRankedAndFound) {
+  const auto dir = FreshDirectory("diagnose_user_effect");
+  const auto sim = RunIn(
+      dir, kMyPliant + " simulate " + kSource +
+               "/experiments/scenarios/divot.json -o one_sided.csv" +
+               " --seed 3 --set log.every_n_periods=30 --set experiment.depths_m=[0.15]" +
+               " --set experiment.peak_torques_nm=[1.0]" +
+               " --set 'hidden_effects={\"one_sided_compliance\":{\"c1\":0.01,\"c2\":0.01}}'");
+  ASSERT_EQ(sim.exit_code, 0) << sim.err;
+  const auto r =
+      RunIn(dir, kMyPliant + " diagnose --json --params " + kParams + " one_sided.csv -o report");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = Summary(r);
+  EXPECT_TRUE(Names(j["effects"], "one_sided_compliance")) << r.out;
+  EXPECT_EQ(j["missing_effect"], "one_sided_compliance") << r.out;
+  // The plain pliant command does not know it.
+  const auto plain =
+      RunIn(dir, kCli + " diagnose --json --params " + kParams + " one_sided.csv -o report2");
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  EXPECT_FALSE(Names(Summary(plain)["effects"], "one_sided_compliance"));
+}
+
+}  // namespace
+}  // namespace pliant::testing
