@@ -16,5 +16,6 @@ Command AddIdentifyCommand(CLI::App& app);
 Command AddParamsCommand(CLI::App& app);
 Command AddSimulateCommand(CLI::App& app);
 Command AddFilterCommand(CLI::App& app);
+Command AddMontecarloCommand(CLI::App& app);
 
 }  // namespace pliant::cli
