@@ -21,12 +21,15 @@ struct MontecarloCommandOptions {
 void PrintSummary(const nlohmann::json& s, const std::string& dir) {
   std::printf("pliant montecarlo: %s, %d trials -> %s/summary.json\n",
               s["study"].get<std::string>().c_str(), s["trials"].get<int>(), dir.c_str());
-  std::printf("  tip error (mm)   median     p95     max   most sensitive to\n");
+  std::printf("  tip error (mm)   median     p95     max   largest share of its variance\n");
   for (const auto& [name, m] : s["methods"].items()) {
     const auto& e = m["tip_error_mm"];
-    std::printf("  %-12s %9.4f %7.4f %7.4f   %s\n", name.c_str(), e["p50"].get<double>(),
+    const std::string dominant = m["dominant"].get<std::string>();
+    const double share =
+        m["regression"].value("variance_share", nlohmann::json::object()).value(dominant, 0.0);
+    std::printf("  %-12s %9.4f %7.4f %7.4f   %s (%.0f %%)\n", name.c_str(), e["p50"].get<double>(),
                 e["p95"].get<double>(), e["max"].get<double>(),
-                m["dominant"].get<std::string>().c_str());
+                dominant.empty() ? "(too few trials)" : dominant.c_str(), 100.0 * share);
   }
   for (const auto& [name, h] : s["honesty"].items()) {
     std::printf("  %-8s NEES mean %.3f (95 %% band [%.3f, %.3f]), NEES <= chi2(2, 0.95): %.1f %%, "

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <numeric>
 
+#include <Eigen/Dense>
 #include <boost/math/distributions/chi_squared.hpp>
 #include <boost/math/statistics/bivariate_statistics.hpp>
 
@@ -65,6 +66,38 @@ std::vector<double> Column(const std::vector<TrialResult>& rows, double (*get)(c
 double Error(const TrialResult& r, int m) { return r.tip_error_mm[m]; }
 double Drawn(const TrialResult& r, int q) { return r.draw.values[q]; }
 
+// Linear regression of the error on the standardised drawn quantities: with
+// independent draws, β_i² / Var(error) is the share of the error's variance
+// that quantity i's spread explains (the shares sum to R²).
+json VarianceShares(const std::vector<std::vector<double>>& inputs, const std::vector<std::string>& names,
+                    const std::vector<double>& error) {
+  const Eigen::Index n = static_cast<Eigen::Index>(error.size()), p = static_cast<Eigen::Index>(inputs.size());
+  json out = json::object();
+  if (n < p + 2) return out;
+  Eigen::MatrixXd x(n, p + 1);
+  x.col(p).setOnes();
+  for (Eigen::Index i = 0; i < p; ++i) {
+    const Eigen::Map<const Eigen::VectorXd> v(inputs[i].data(), n);
+    const double mean = v.mean(), sd = std::sqrt((v.array() - mean).square().sum() / (n - 1));
+    // A quantity that happens not to vary in these rows explains nothing.
+    x.col(i) = sd > 0.0 ? Eigen::VectorXd((v.array() - mean) / sd) : Eigen::VectorXd::Zero(n);
+  }
+  const Eigen::Map<const Eigen::VectorXd> y(error.data(), n);
+  const double variance = (y.array() - y.mean()).square().sum() / (n - 1);
+  const Eigen::VectorXd beta = x.colPivHouseholderQr().solve(y);
+  json shares = json::object();
+  double explained = 0.0;
+  for (Eigen::Index i = 0; i < p; ++i) {
+    const double share = x.col(i).isZero() ? 0.0 : beta[i] * beta[i] / variance;
+    shares[names[i]] = share;
+    explained += share;
+  }
+  out["variance_share"] = shares;
+  out["variance_share_sum"] = explained;
+  out["r2_linear"] = 1.0 - (x * beta - y).squaredNorm() / ((n - 1) * variance);
+  return out;
+}
+
 }  // namespace
 
 json SummariseStudy(const Study& study, const std::vector<TrialResult>& rows) {
@@ -81,15 +114,24 @@ json SummariseStudy(const Study& study, const std::vector<TrialResult>& rows) {
     // Which drawn quantity's spread moves this method's error most: Spearman's
     // rank correlation over the trials (quantities held constant are left out).
     json sensitivity = json::object();
-    std::string dominant;
-    double strongest = -1.0;
+    std::vector<std::vector<double>> inputs;
+    std::vector<std::string> names;
     for (int q = 0; q < kSampledQuantities; ++q) {
       if (!study.quantities[q].Varies()) continue;
-      const double rho = Spearman(Column(rows, Drawn, q), errors);
-      sensitivity[SampledQuantityName(q)] = rho;
-      if (std::abs(rho) > strongest) strongest = std::abs(rho), dominant = SampledQuantityName(q);
+      inputs.push_back(Column(rows, Drawn, q));
+      names.push_back(SampledQuantityName(q));
+      const double rho = Spearman(inputs.back(), errors);
+      sensitivity[names.back()] = rho;
     }
     method["rank_correlation"] = sensitivity;
+    method["regression"] = VarianceShares(inputs, names, errors);
+    // The quantity whose spread explains most of the error's variance.
+    std::string dominant;  // "" when there are too few trials for the regression
+    double largest = 0.0;
+    for (const auto& name : names) {
+      const double share = method["regression"].value("variance_share", json::object()).value(name, 0.0);
+      if (share > largest) largest = share, dominant = name;
+    }
     method["dominant"] = dominant;
     methods[CorrectionMethodName(m)] = method;
   }

@@ -100,6 +100,11 @@ TEST(Summary, PercentilesNeesAndCoverageMatchHandValues) {
   EXPECT_NEAR(s["methods"]["filter"]["rank_correlation"]["depth_m"].get<double>(), 1.0, 1e-12);
   EXPECT_EQ(s["methods"]["filter"]["dominant"], "depth_m");
   EXPECT_EQ(s["methods"]["filter"]["rank_correlation"]["backlash1_rad"].get<double>(), 0.0);
+  // The error is linear in the depth: its spread explains all of the variance.
+  const auto& regression = s["methods"]["filter"]["regression"];
+  EXPECT_NEAR(regression["variance_share"]["depth_m"].get<double>(), 1.0, 1e-9);
+  EXPECT_EQ(regression["variance_share"]["backlash1_rad"].get<double>(), 0.0);
+  EXPECT_NEAR(regression["r2_linear"].get<double>(), 1.0, 1e-9);
   // χ²(200) quantiles 162.728 and 241.058 (tables), over 100 trials.
   const auto& f = s["honesty"]["filter"];
   EXPECT_NEAR(f["nees_band_95"][0].get<double>(), 1.62728, 2e-5);

@@ -14,13 +14,13 @@ namespace {
 
 // A short push (0.2 s hold) at 0.15 m along +joint 1 at 0.8 N·m; `instrument`
 // fixes the drawn instrument.
-Study ShortStudy(const std::string& instrument) {
+Study ShortStudy(const std::string& instrument, const std::string& identify = "") {
   return ParseStudy(R"({"format": "pliant-study", "version": 1, "description": "test",
   "scenario": ")" PLIANT_SOURCE_DIR R"(/experiments/scenarios/divot.json",
   "scenario_set": ["hidden_effects={}", "experiment.hold_s=0.2", "experiment.rest_s=0.1"],
   "trials": 4, "seed": 11,
   "contact": {"depth_m": 0.15, "direction_deg": 0, "peak_torque_nm": 0.8, "speed_rad_s": 0.05},
-  "instrument": )" + instrument + "}",
+  "instrument": )" + instrument + identify + "}",
                     "short.json");
 }
 
@@ -83,6 +83,25 @@ TEST(RunTrial, CorrectionsRemoveMostOfTheDeflectionOfAKnownInstrument) {
   const TrialResult soft = RunTrial(ShortStudy(R"({"compliance_scale": 1.4})"), 0);
   EXPECT_GT(soft.tip_error_mm[kUncorrected], exact.tip_error_mm[kUncorrected]);
   EXPECT_GT(soft.tip_error_mm[kEquation2], exact.tip_error_mm[kEquation2] + 0.1);
+}
+
+TEST(RunTrial, IdentifyingTheInstrumentRecoversItsCompliance) {
+  // The same push of a shaft 40 % softer than nominal, corrected with the
+  // nominal parameters and with those the paper's procedure identifies on a
+  // simulated bias sweep and clamped beam of that very shaft.
+  const std::string soft = R"({"compliance_scale": 1.4})";
+  const std::string calibration = R"(, "identify": true, "calibration": [
+    {"scenario": ")" PLIANT_SOURCE_DIR R"(/experiments/scenarios/bias_sweep.json",
+     "set": ["hidden_effects={}", "experiment.depths_m=[0.15]", "experiment.step_deg=10",
+             "experiment.move_s=0.2", "experiment.settle_s=0.1", "log.mode=hold_means"]},
+    {"scenario": ")" PLIANT_SOURCE_DIR R"(/experiments/scenarios/clamped_beam.json",
+     "set": ["hidden_effects={}", "experiment.depths_m=[0.10,0.125,0.15,0.175,0.20]",
+             "experiment.tip_step_m=0.0005", "experiment.settle_s=0.1", "experiment.hold_samples=10"]}])";
+  const TrialResult nominal = RunTrial(ShortStudy(soft), 0);
+  const TrialResult identified = RunTrial(ShortStudy(soft, calibration), 0);
+  EXPECT_EQ(nominal.tip_error_mm[kUncorrected], identified.tip_error_mm[kUncorrected]);  // same push
+  EXPECT_LT(identified.tip_error_mm[kEquation2], 0.5 * nominal.tip_error_mm[kEquation2]);
+  EXPECT_LT(identified.tip_error_mm[kDeadZone], 0.5 * nominal.tip_error_mm[kDeadZone]);
 }
 
 }  // namespace
