@@ -93,9 +93,12 @@ std::uint64_t Fnv1a(const std::string& text, std::uint64_t hash = 0xcbf29ce48422
 std::string ReadText(const std::string& path, const char* what, const char* fix) {
   // Only regular files of sane size: a path to /dev/zero or a FIFO would never end.
   std::error_code error;
+  if (!std::filesystem::exists(path, error)) {
+    throw io::InputError(path, 0, 0, std::string("no such ") + what, fix);
+  }
   if (!std::filesystem::is_regular_file(path, error) ||
       std::filesystem::file_size(path, error) > (16u << 20)) {
-    throw io::InputError(path, 0, 0, std::string("the ") + what + " is not a readable file under 16 MB", fix);
+    throw io::InputError(path, 0, 0, std::string("the ") + what + " is not a regular file under 16 MB", fix);
   }
   std::ifstream in(path, std::ios::binary);
   if (!in) throw io::InputError(path, 0, 0, std::string("cannot open the ") + what, fix);
