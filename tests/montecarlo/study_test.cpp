@@ -1,6 +1,7 @@
 // Study files and trial streams (study.h): the distributions' quantiles
 // against their closed forms, the streams' independence of the split, and
 // every bad key reported at its line.
+#include <cctype>
 #include <cmath>
 #include <set>
 #include <string>
@@ -36,6 +37,9 @@ TEST(Distribution, QuantilesMatchTheirClosedForms) {
   clamped.lower = -1.0;
   EXPECT_EQ(clamped.Quantile(1e-6), -1.0);
   EXPECT_EQ((Distribution{K::kConstant, 7.0, 0.0}).Quantile(0.9), 7.0);
+  EXPECT_TRUE((Distribution{K::kUniform, -90.0, -10.0}).Varies());
+  EXPECT_FALSE((Distribution{K::kUniform, 0.1, 0.1}).Varies());
+  EXPECT_FALSE((Distribution{K::kNormal, 1.0, 0.0}).Varies());
 }
 
 TEST(TrialStream, DependsOnSeedAndTrialOnlyAndIsUniform) {
@@ -124,7 +128,12 @@ INSTANTIATE_TEST_SUITE_P(
                  "instrument.compliance_scale"},
         BadStudy{",\n \"noise\": {\"effort_sd_nm\": \"loud\"}", 5, "noise.effort_sd_nm"},
         BadStudy{",\n \"identify\": true", 5, "calibration"},
-        BadStudy{",\n \"scenario_set\": [\"experiment.hold_s=-1\"]", 5, "scenario_set"}));
+        BadStudy{",\n \"scenario_set\": [\"experiment.hold_s=-1\"]", 5, "scenario_set"}),
+    [](const ::testing::TestParamInfo<BadStudy>& info) {
+      std::string name;  // the key the message must name, as a test name
+      for (char c : info.param.says) name += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+      return name + "_" + std::to_string(info.index);
+    });
 
 }  // namespace
 }  // namespace pliant::experiments

@@ -31,7 +31,9 @@ struct Distribution {
   double lower = -1e300, upper = 1e300;  ///< the quantity's physical range: draws are clamped to it
   /// The quantile at u in (0, 1), clamped to [lower, upper].
   double Quantile(double u) const;
-  bool Varies() const { return kind != Kind::kConstant && b > 0.0; }
+  bool Varies() const {
+    return kind == Kind::kUniform ? b > a : kind != Kind::kConstant && b > 0.0;
+  }
 };
 
 /// The quantities a trial draws, in the order it draws them (their names are
