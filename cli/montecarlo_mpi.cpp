@@ -2,6 +2,7 @@
 // out the pending trials, appends every row as it arrives (its own threads'
 // and the other ranks') and writes the outputs; the summary is the same
 // function of the same rows as on one machine.
+#include <chrono>
 #include <cstdlib>
 #include <exception>
 #include <mutex>
@@ -92,8 +93,15 @@ nlohmann::json RunMontecarloMpi(const experiments::Study& study,
   });
   std::string failure;
   for (int done = 1; done < size;) {
+    // Poll, not a blocking receive: OpenMPI's receive spins a core, which
+    // rank 0's own worker threads need.
+    const auto probe = world.iprobe(mpi::any_source, mpi::any_tag);
+    if (!probe) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+      continue;
+    }
     std::string message;
-    const mpi::status status = world.recv(mpi::any_source, mpi::any_tag, message);
+    const mpi::status status = world.recv(probe->source(), probe->tag(), message);
     if (status.tag() == kDone) {
       ++done;
       if (!message.empty() && failure.empty()) {
