@@ -3,6 +3,7 @@
 // every bad key reported at its line.
 #include <cctype>
 #include <cmath>
+#include <ostream>
 #include <set>
 #include <string>
 
@@ -105,6 +106,8 @@ struct BadStudy {
   std::size_t line;
   std::string says;
 };
+
+void PrintTo(const BadStudy& bad, std::ostream* os) { *os << "naming " << bad.says; }
 
 class BadStudies : public ::testing::TestWithParam<BadStudy> {};
 
