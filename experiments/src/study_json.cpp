@@ -177,9 +177,14 @@ Study ParseStudy(const std::string& text, const std::string& file) {
     r.Fail("/identify", "identify is true but the study has no calibration",
            "add \"calibration\": [{\"scenario\": \"../scenarios/clamped_beam.json\"}] or set identify to false");
   }
-  if (s.scenario.type != ExperimentType::kDivot) {
-    r.Fail("/scenario", "the scenario must be a divot experiment (experiment.type \"divot\")",
-           "use experiments/scenarios/divot.json or a copy of it");
+  const bool clamped = s.scenario.type == ExperimentType::kClampedBeam;
+  if (s.scenario.type != ExperimentType::kDivot && !clamped) {
+    r.Fail("/scenario", "the scenario must be a divot or clamped_beam experiment",
+           "use experiments/scenarios/divot.json or clamped_beam.json, or a copy of one");
+  }
+  if (clamped && s.scenario.log.mode != LogMode::kAll) {
+    r.Fail("/scenario_set", "a clamped-beam study needs every sample in the log (the filter runs on them)",
+           "add \"log.mode=all\" to scenario_set");
   }
   // Defaults: the scenario's own instrument, noise and first contact.
   const Scenario& base = s.scenario;
@@ -188,10 +193,15 @@ Study ParseStudy(const std::string& text, const std::string& file) {
     s.quantities[kBacklash1Rad + j].a = base.truth.joints[j].backlash_rad;
   }
   s.quantities[kEffortNoiseSdNm].a = base.sensors.effort_noise_sd_nm;
-  s.quantities[kDepthM].a = base.divot.depths_m.front();
-  s.quantities[kDirectionDeg].a = base.divot.directions_deg.front();
-  s.quantities[kPeakTorqueNm].a = base.divot.peak_torques_nm.front();
-  s.quantities[kSpeedRadS].a = base.divot.speeds_rad_s.front();
+  if (clamped) {  // a sweep at one depth up to an effort limit: no direction, no speed
+    s.quantities[kDepthM].a = base.clamped_beam.depths_m.front();
+    s.quantities[kPeakTorqueNm].a = base.clamped_beam.effort_limit_nm;
+  } else {
+    s.quantities[kDepthM].a = base.divot.depths_m.front();
+    s.quantities[kDirectionDeg].a = base.divot.directions_deg.front();
+    s.quantities[kPeakTorqueNm].a = base.divot.peak_torques_nm.front();
+    s.quantities[kSpeedRadS].a = base.divot.speeds_rad_s.front();
+  }
   for (const char* section : {"instrument", "noise", "contact"}) {
     if (!doc.contains(section)) continue;
     std::vector<io::JsonKey> keys;
@@ -203,6 +213,11 @@ Study ParseStudy(const std::string& text, const std::string& file) {
     for (const auto& spec : kSpecs) {
       if (std::string(spec.section) != section || !doc[section].contains(spec.key)) continue;
       QuantitySpec checked = spec;
+      if (clamped && (spec.first == kDirectionDeg || spec.first == kSpeedRadS)) {
+        r.Fail(ps + "/" + spec.key, std::string("a clamped-beam sweep has no ") + spec.key,
+               "remove it (the sweep steps the tip until |effort| reaches peak_torque_nm)");
+      }
+      if (clamped && spec.first == kPeakTorqueNm) checked.lower = 0.05;  // the protocol's limit
       if (spec.first == kDepthM) {  // pushes only where the truth's law is valid
         checked.lower = base.truth.joints[0].depth_min_m;
         checked.upper = base.truth.joints[0].depth_max_m;

@@ -1,5 +1,6 @@
-// One Monte Carlo trial (montecarlo_trial.h): simulate a divot push of a drawn
-// instrument, correct it five ways, score each against the simulator's truth.
+// One Monte Carlo trial (montecarlo_trial.h): simulate a divot push (or a
+// clamped-beam sweep) of a drawn instrument, correct it five ways, score each
+// against the simulator's truth.
 #include <cmath>
 #include <stdexcept>
 
@@ -120,10 +121,15 @@ TrialResult RunTrial(const Study& study, int trial) {
   Scenario push = study.scenario;
   push.truth = TrialTruth(study, d);
   push.sensors.effort_noise_sd_nm = d.values[kEffortNoiseSdNm];
-  push.divot.depths_m = {d.values[kDepthM]};
-  push.divot.directions_deg = {d.values[kDirectionDeg]};
-  push.divot.peak_torques_nm = {d.values[kPeakTorqueNm]};
-  push.divot.speeds_rad_s = {d.values[kSpeedRadS]};
+  if (push.type == ExperimentType::kClampedBeam) {  // one depth, to the drawn effort limit
+    push.clamped_beam.depths_m = {d.values[kDepthM]};
+    push.clamped_beam.effort_limit_nm = d.values[kPeakTorqueNm];
+  } else {
+    push.divot.depths_m = {d.values[kDepthM]};
+    push.divot.directions_deg = {d.values[kDirectionDeg]};
+    push.divot.peak_torques_nm = {d.values[kPeakTorqueNm]};
+    push.divot.speeds_rad_s = {d.values[kSpeedRadS]};
+  }
   const io::Log log = Simulate(push, d.simulation_seed).log;
 
   const models::ModelParameters parameters = study.identify

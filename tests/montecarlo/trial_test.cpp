@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "pliant/experiments/montecarlo_trial.h"
+#include "pliant/io/input_error.h"
 #include "pliant/models/parameters.h"
 
 namespace pliant::experiments {
@@ -83,6 +84,26 @@ TEST(RunTrial, CorrectionsRemoveMostOfTheDeflectionOfAKnownInstrument) {
   const TrialResult soft = RunTrial(ShortStudy(R"({"compliance_scale": 1.4})"), 0);
   EXPECT_GT(soft.tip_error_mm[kUncorrected], exact.tip_error_mm[kUncorrected]);
   EXPECT_GT(soft.tip_error_mm[kEquation2], exact.tip_error_mm[kEquation2] + 0.1);
+}
+
+TEST(RunTrial, AClampedSweepIsScoredLikeAPush) {
+  // A clamped-beam sweep of the nominal instrument at 0.15 m up to 0.5 N·m.
+  const Study study = ParseStudy(R"({"format": "pliant-study", "version": 1, "description": "t",
+  "scenario": ")" PLIANT_SOURCE_DIR R"(/experiments/scenarios/clamped_beam.json",
+  "scenario_set": ["hidden_effects={}", "log.mode=all", "experiment.joints=[1]",
+                   "experiment.settle_s=0.1", "experiment.hold_samples=10"],
+  "trials": 1, "seed": 3, "contact": {"depth_m": 0.15, "peak_torque_nm": 0.5}})",
+                                 "clamped.json");
+  const TrialResult r = RunTrial(study, 0);
+  EXPECT_GT(r.held_samples, 10000);  // every sample of the sweep, at 1.5 kHz
+  EXPECT_GT(r.tip_error_mm[kUncorrected], 1.0);
+  EXPECT_LT(r.tip_error_mm[kDeadZone], 0.5 * r.tip_error_mm[kUncorrected]);
+  EXPECT_LT(r.tip_error_mm[kSmoother], 0.5 * r.tip_error_mm[kUncorrected]);
+  // A sweep has no push direction: the study says so at the key.
+  EXPECT_THROW(ParseStudy(R"({"format": "pliant-study", "version": 1, "description": "t",
+  "scenario": ")" PLIANT_SOURCE_DIR R"(/experiments/scenarios/clamped_beam.json",
+  "scenario_set": ["log.mode=all"], "trials": 1, "seed": 3,
+  "contact": {"direction_deg": {"uniform": [0, 90]}}})", "clamped.json"), io::InputError);
 }
 
 TEST(RunTrial, IdentifyingTheInstrumentRecoversItsCompliance) {

@@ -48,7 +48,7 @@ enum SampledQuantity {
   kEffortNoiseSdNm,   ///< the effort sensor's noise
   kDepthM,            ///< insertion depth of the push
   kDirectionDeg,      ///< push direction in the (tau1, tau2) plane
-  kPeakTorqueNm,
+  kPeakTorqueNm,      ///< divot: the push's peak; clamped beam: the sweep's effort limit
   kSpeedRadS,
   kSampledQuantities
 };
@@ -61,7 +61,10 @@ struct Study {
   std::string description;
   std::string scenario_path;             ///< resolved against the study file's folder
   std::vector<std::string> scenario_set;  ///< "key=value" overrides of the scenario
-  Scenario scenario;                      ///< the base divot scenario, overrides applied
+  /// The base scenario, overrides applied: a divot (one push per trial) or a
+  /// clamped beam (one sweep per trial at the drawn depth, stepping until
+  /// |effort| reaches the drawn peak torque; direction and speed unused).
+  Scenario scenario;
   Distribution quantities[kSampledQuantities];
   /// Identify each trial's parameters (the paper's procedure) on a simulated
   /// calibration of its own instrument first; else use the nominal ones.
