@@ -17,5 +17,6 @@ Command AddParamsCommand(CLI::App& app);
 Command AddSimulateCommand(CLI::App& app);
 Command AddFilterCommand(CLI::App& app);
 Command AddDiagnoseCommand(CLI::App& app);
+Command AddMontecarloCommand(CLI::App& app);
 
 }  // namespace pliant::cli

@@ -26,8 +26,13 @@ struct Override {
 
 class ScenarioReader {
  public:
-  ScenarioReader(const std::string& text, std::string file, std::vector<Override> overrides)
-      : file_(std::move(file)), map_(text), overrides_(std::move(overrides)) {}
+  /// `top` names the document in messages ("the scenario", "the study") and
+  /// `see_docs` ends the fixes of object-key problems.
+  ScenarioReader(const std::string& text, std::string file, std::vector<Override> overrides,
+                 std::string top = "the scenario",
+                 std::string see_docs = " (docs/simulator.md shows every section)")
+      : file_(std::move(file)), map_(text), overrides_(std::move(overrides)),
+        top_(std::move(top)), see_docs_(std::move(see_docs)) {}
 
   [[noreturn]] void Fail(const std::string& pointer, std::string problem, std::string fix) const {
     for (const Override& o : overrides_) {
@@ -41,8 +46,8 @@ class ScenarioReader {
   }
 
   /// "/truth/backlash_rad" -> "truth.backlash_rad", as users think of it.
-  static std::string Dotted(const std::string& pointer) {
-    return io::DottedJsonPointer(pointer, "the scenario");
+  std::string Dotted(const std::string& pointer) const {
+    return io::DottedJsonPointer(pointer, top_);
   }
 
   static std::string Child(const std::string& pointer, const std::string& key) {
@@ -50,8 +55,7 @@ class ScenarioReader {
   }
 
   void Object(const json& value, const std::string& pointer, const std::vector<Key>& keys) const {
-    if (auto p = io::CheckJsonObject(value, pointer, keys, "the scenario",
-                                     " (docs/simulator.md shows every section)")) {
+    if (auto p = io::CheckJsonObject(value, pointer, keys, top_, see_docs_)) {
       Fail(p->pointer, std::move(p->problem), std::move(p->fix));
     }
   }
@@ -115,6 +119,8 @@ class ScenarioReader {
   std::string file_;
   io::JsonSourceMap map_;
   std::vector<Override> overrides_;
+  std::string top_;
+  std::string see_docs_;
 };
 
 }  // namespace pliant::experiments::detail

@@ -1,0 +1,197 @@
+// One Monte Carlo trial (montecarlo_trial.h): simulate a divot push (or a
+// clamped-beam sweep) of a drawn instrument, correct it five ways, score each
+// against the simulator's truth.
+#include <cmath>
+#include <stdexcept>
+
+#include <Eigen/Dense>
+
+#include "pliant/estimation/compliance_correction.h"
+#include "pliant/estimation/filter_log.h"
+#include "pliant/estimation/filter_smoother.h"
+#include "pliant/estimation/identification.h"
+#include "pliant/estimation/tip_error_statistics.h"
+#include "pliant/experiments/montecarlo_trial.h"
+#include "pliant/experiments/simulator.h"
+
+namespace pliant::experiments {
+namespace {
+
+constexpr double kZ95 = 1.959963984540054;  // two-sided 95 % normal quantile
+constexpr int kCoverageEvery = 15;          // 0.01 s at 1.5 kHz
+
+// Scales a compliance law's K(L) by `scale` whatever its form.
+void ScaleCompliance(models::ComplianceLaw& law, double scale) {
+  auto& c = law.cubic.coefficients;
+  switch (law.form) {
+    case models::ComplianceForm::kInverseCubic:  // 1/K is the cubic
+      for (double& x : c) x /= scale;
+      break;
+    case models::ComplianceForm::kDirectCubic:
+      for (double& x : c) x *= scale;
+      break;
+    case models::ComplianceForm::kBeamSeries:  // the geometry l_c stays
+      for (int i : {models::kJointComplianceRadPerNm, models::kStructureComplianceRadPerN,
+                    models::kShaftFlexibilityPerNm2}) {
+        c[i] *= scale;
+      }
+      break;
+  }
+}
+
+// Identifies the trial's parameters on its calibration runs (paper's procedure).
+models::ModelParameters Identify(const Study& study, const Truth& truth, const TrialDraw& draw,
+                                 TrialStream& stream) {
+  estimation::IdentificationData data;
+  for (std::size_t i = 0; i < study.calibration.size(); ++i) {
+    Scenario calibration = study.calibration[i];
+    calibration.truth = truth;
+    calibration.sensors.effort_noise_sd_nm = draw.values[kEffortNoiseSdNm];
+    const auto result = Simulate(calibration, stream.Next());
+    estimation::AppendSamples(result.log, calibration.name, {}, &data);
+  }
+  auto prior = NominalParameters(study, draw.values[kDepthM]);
+  return estimation::RunPaperProcedure(data, prior).parameters;
+}
+
+struct Honesty {
+  double nees = 0.0;
+  int covered = 0;
+  long inside = 0, scored = 0;
+  void Score(const Eigen::Vector2d& error, const Eigen::Matrix2d& covariance, bool picked,
+             bool every) {
+    if (picked) {
+      nees = error.dot(covariance.ldlt().solve(error));
+      for (int j = 0; j < 2; ++j) covered += std::abs(error[j]) <= kZ95 * std::sqrt(covariance(j, j));
+    }
+    if (!every) return;
+    for (int j = 0; j < 2; ++j) {
+      inside += std::abs(error[j]) <= kZ95 * std::sqrt(covariance(j, j));
+      ++scored;
+    }
+  }
+};
+
+}  // namespace
+
+const char* CorrectionMethodName(int method) {
+  static const char* const kNames[kCorrectionMethods] = {"none", "equation2", "deadzone", "filter",
+                                                         "smoother"};
+  return kNames[method];
+}
+
+models::ModelParameters NominalParameters(const Study& study, double depth_m) {
+  models::ModelParameters parameters = estimation::PaperPrior();
+  const Truth& truth = study.scenario.truth;
+  for (int j = 0; j < 2; ++j) {
+    auto& joint = parameters.joints[j];
+    const auto& nominal = truth.joints[j];
+    joint.compliance = nominal.compliance;
+    joint.backlash_rad = nominal.backlash_rad;
+    joint.depth_min_m = nominal.depth_min_m;
+    joint.depth_max_m = nominal.depth_max_m;
+    joint.bias_form = models::BiasForm::kTable;
+    joint.bias_torque = nominal.bias_torque;
+    const double shift =
+        truth.bias_depth_slope_nm_per_m[j] * (depth_m - truth.bias_reference_depth_m);
+    for (double& v : joint.bias_torque.torque_nm) v += shift;
+  }
+  parameters.covariance.reset();
+  return parameters;
+}
+
+Truth TrialTruth(const Study& study, const TrialDraw& draw) {
+  Truth truth = study.scenario.truth;
+  for (int j = 0; j < 2; ++j) {
+    auto& joint = truth.joints[j];
+    ScaleCompliance(joint.compliance, draw.values[kComplianceScale1 + j]);
+    joint.backlash_rad = draw.values[kBacklash1Rad + j];
+    for (double& v : joint.bias_torque.torque_nm) v += draw.values[kBiasOffset1Nm + j];
+  }
+  return truth;
+}
+
+TrialResult RunTrial(const Study& study, int trial) {
+  TrialStream stream(study.seed, static_cast<std::uint64_t>(trial));
+  TrialResult out;
+  out.trial = trial;
+  out.draw = DrawTrial(study, stream);
+  const TrialDraw& d = out.draw;
+
+  Scenario push = study.scenario;
+  push.truth = TrialTruth(study, d);
+  push.sensors.effort_noise_sd_nm = d.values[kEffortNoiseSdNm];
+  if (push.type == ExperimentType::kClampedBeam) {  // one depth, to the drawn effort limit
+    push.clamped_beam.depths_m = {d.values[kDepthM]};
+    push.clamped_beam.effort_limit_nm = d.values[kPeakTorqueNm];
+  } else {
+    push.divot.depths_m = {d.values[kDepthM]};
+    push.divot.directions_deg = {d.values[kDirectionDeg]};
+    push.divot.peak_torques_nm = {d.values[kPeakTorqueNm]};
+    push.divot.speeds_rad_s = {d.values[kSpeedRadS]};
+  }
+  const io::Log log = Simulate(push, d.simulation_seed).log;
+
+  const models::ModelParameters parameters = study.identify
+                                                 ? Identify(study, push.truth, d, stream)
+                                                 : NominalParameters(study, d.values[kDepthM]);
+  const estimation::ComplianceCorrector equation2(parameters, estimation::CorrectionModel::kPaper);
+  const estimation::ComplianceCorrector deadzone(parameters, estimation::CorrectionModel::kDeadZone);
+  estimation::FilterOptions options;
+  options.effort_noise_nm = std::max(d.values[kEffortNoiseSdNm], 1e-4);
+  // The arm's motor inertia is a property of the PSM, not of the instrument
+  // under study: the filter is told it (docs/filter.md, motor inertia), as a
+  // lab would from the arm's dynamic identification.
+  options.motor_inertia_kg_m2 = push.joint.inertia_kg_m2.mean();
+  estimation::FilterSmoother smoother(parameters, options);
+
+  const io::StandardColumns c(log.header);
+  if (c.q1_true < 0 || c.tip_fixed < 0) throw std::runtime_error("simulated log lacks truth columns");
+  const std::size_t rows = log.Rows(), cols = log.Columns();
+  smoother.Reserve(rows);
+  for (std::size_t r = 0; r < rows; ++r) out.held_samples += log.values[r * cols + c.tip_fixed] != 0.0;
+  if (out.held_samples == 0) throw std::runtime_error("the simulated push never held the tip");
+  const long picked = std::min<long>(out.held_samples - 1, long(d.nees_pick * out.held_samples));
+
+  estimation::TipErrorStatistics error[kCorrectionMethods];
+  Honesty honesty[2];
+  long held = 0;
+  for (std::size_t r = 0; r < rows; ++r) {
+    const double* v = &log.values[r * cols];
+    const auto sample = estimation::SampleFromRow(c, v);
+    const auto filtered = smoother.Add(sample);
+    if (!sample.tip_fixed) continue;
+    const Eigen::Vector3d q(v[c.q1], v[c.q2], v[c.q3]);
+    const Eigen::Vector2d truth(v[c.q1_true], v[c.q2_true]), effort(v[c.tau1], v[c.tau2]);
+    const auto with_angles = [&](const Eigen::Vector2d& a) { return Eigen::Vector3d(a[0], a[1], q[2]); };
+    error[kUncorrected].Add(q, truth);
+    error[kEquation2].Add(with_angles(equation2.Correct(q, effort).corrected_rad), truth);
+    error[kDeadZone].Add(with_angles(deadzone.Correct(q, effort).corrected_rad), truth);
+    error[kFilter].Add(with_angles(filtered.corrected_rad), truth);
+    honesty[0].Score(filtered.corrected_rad - truth, filtered.covariance_rad2, held == picked,
+                     held % kCoverageEvery == 0);
+    ++held;
+  }
+  smoother.Smooth();
+  held = 0;
+  for (std::size_t r = 0; r < rows; ++r) {
+    const double* v = &log.values[r * cols];
+    if (v[c.tip_fixed] == 0.0) continue;
+    const Eigen::Vector2d truth(v[c.q1_true], v[c.q2_true]);
+    const auto smoothed = smoother.Estimate(r);
+    error[kSmoother].Add(Eigen::Vector3d(smoothed.corrected_rad[0], smoothed.corrected_rad[1], v[c.q3]),
+                         truth);
+    honesty[1].Score(smoothed.corrected_rad - truth, smoothed.covariance_rad2, held == picked,
+                     held % kCoverageEvery == 0);
+    ++held;
+  }
+  for (int m = 0; m < kCorrectionMethods; ++m) out.tip_error_mm[m] = error[m].RmsMm();
+  for (int e = 0; e < 2; ++e) {
+    out.nees[e] = honesty[e].nees;
+    out.covered[e] = honesty[e].covered;
+    out.coverage_fraction[e] = double(honesty[e].inside) / double(honesty[e].scored);
+  }
+  return out;
+}
+
+}  // namespace pliant::experiments

@@ -1,0 +1,129 @@
+// One trial (montecarlo_trial.h): the drawn instrument is the one simulated,
+// a trial is a pure function of (study, k), and the corrections do what the
+// physics says against the simulator's truth.
+#include <cstring>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "pliant/experiments/montecarlo_trial.h"
+#include "pliant/io/input_error.h"
+#include "pliant/models/parameters.h"
+
+namespace pliant::experiments {
+namespace {
+
+// A short push (0.2 s hold) at 0.15 m along +joint 1 at 0.8 N·m; `instrument`
+// fixes the drawn instrument.
+Study ShortStudy(const std::string& instrument, const std::string& identify = "") {
+  return ParseStudy(R"({"format": "pliant-study", "version": 1, "description": "test",
+  "scenario": ")" PLIANT_SOURCE_DIR R"(/experiments/scenarios/divot.json",
+  "scenario_set": ["hidden_effects={}", "experiment.hold_s=0.2", "experiment.rest_s=0.1"],
+  "trials": 4, "seed": 11,
+  "contact": {"depth_m": 0.15, "direction_deg": 0, "peak_torque_nm": 0.8, "speed_rad_s": 0.05},
+  "instrument": )" + instrument + identify + "}",
+                    "short.json");
+}
+
+TEST(TrialTruth, ScalesComplianceAndSetsBacklashAndBias) {
+  const Study study = ShortStudy("{}");
+  TrialDraw draw;
+  TrialStream stream(1, 0);
+  draw = DrawTrial(study, stream);
+  draw.values[kComplianceScale1] = 1.25;
+  draw.values[kComplianceScale2] = 0.8;
+  draw.values[kBacklash1Rad] = 0.003;
+  draw.values[kBiasOffset2Nm] = 0.05;
+  const Truth truth = TrialTruth(study, draw);
+  for (int j = 0; j < 2; ++j) {
+    const auto& nominal = study.scenario.truth.joints[j].compliance;
+    const auto& scaled = truth.joints[j].compliance;
+    const double k0 = models::EvaluateCompliance(nominal.form, nominal.cubic.coefficients.data(), 0.15);
+    const double k1 = models::EvaluateCompliance(scaled.form, scaled.cubic.coefficients.data(), 0.15);
+    EXPECT_NEAR(k1 / k0, j == 0 ? 1.25 : 0.8, 1e-12);
+  }
+  EXPECT_EQ(truth.joints[0].backlash_rad, 0.003);
+  const auto& before = study.scenario.truth.joints[1].bias_torque.torque_nm;
+  const auto& after = truth.joints[1].bias_torque.torque_nm;
+  ASSERT_EQ(before.size(), after.size());
+  for (std::size_t i = 0; i < before.size(); ++i) EXPECT_NEAR(after[i] - before[i], 0.05, 1e-15);
+}
+
+TEST(NominalParameters, HoldTheBiasTableAtThePushDepth) {
+  const Study study = ShortStudy("{}");
+  const auto at = NominalParameters(study, 0.20);
+  const Truth& truth = study.scenario.truth;
+  // Joint 2's bias moves with depth: s·(L − L_ref).
+  const double shift = truth.bias_depth_slope_nm_per_m[1] * (0.20 - truth.bias_reference_depth_m);
+  EXPECT_NEAR(at.joints[1].bias_torque.torque_nm[0] - truth.joints[1].bias_torque.torque_nm[0],
+              shift, 1e-15);
+  EXPECT_EQ(at.joints[0].backlash_rad, truth.joints[0].backlash_rad);
+}
+
+TEST(RunTrial, IsAPureFunctionOfTheStudyAndTheIndex) {
+  const Study study = ShortStudy(R"({"compliance_scale": {"lognormal": [1.0, 0.1]}})");
+  const TrialResult a = RunTrial(study, 3), b = RunTrial(study, 3), c = RunTrial(study, 2);
+  EXPECT_EQ(std::memcmp(a.tip_error_mm, b.tip_error_mm, sizeof a.tip_error_mm), 0);
+  EXPECT_EQ(std::memcmp(a.nees, b.nees, sizeof a.nees), 0);
+  EXPECT_EQ(a.draw.simulation_seed, b.draw.simulation_seed);
+  EXPECT_NE(a.draw.values[kComplianceScale1], c.draw.values[kComplianceScale1]);
+  EXPECT_GT(a.held_samples, 300);  // a 0.2 s hold at 1.5 kHz, plus the ramps
+}
+
+TEST(RunTrial, CorrectionsRemoveMostOfTheDeflectionOfAKnownInstrument) {
+  // The instrument is the nominal one: equation (2) and the dead-zone model
+  // take out the compliance and the backlash; the 0.8 N·m push deflects the
+  // tip by about K·tau·r + δ·r ≈ 1.5 mm at 0.15 m.
+  const TrialResult exact = RunTrial(ShortStudy("{}"), 0);
+  EXPECT_GT(exact.tip_error_mm[kUncorrected], 1.0);
+  for (int m : {kEquation2, kDeadZone, kFilter, kSmoother}) {
+    EXPECT_LT(exact.tip_error_mm[m], 0.5 * exact.tip_error_mm[kUncorrected]) << CorrectionMethodName(m);
+  }
+  // A shaft 40 % more compliant than the nominal one: equation (2) leaves
+  // 0.4·K·tau of the deflection, so its error grows; the uncorrected error grows too.
+  const TrialResult soft = RunTrial(ShortStudy(R"({"compliance_scale": 1.4})"), 0);
+  EXPECT_GT(soft.tip_error_mm[kUncorrected], exact.tip_error_mm[kUncorrected]);
+  EXPECT_GT(soft.tip_error_mm[kEquation2], exact.tip_error_mm[kEquation2] + 0.1);
+}
+
+TEST(RunTrial, AClampedSweepIsScoredLikeAPush) {
+  // A clamped-beam sweep of the nominal instrument at 0.15 m up to 0.5 N·m.
+  const Study study = ParseStudy(R"({"format": "pliant-study", "version": 1, "description": "t",
+  "scenario": ")" PLIANT_SOURCE_DIR R"(/experiments/scenarios/clamped_beam.json",
+  "scenario_set": ["hidden_effects={}", "log.mode=all", "experiment.joints=[1]",
+                   "experiment.settle_s=0.1", "experiment.hold_samples=10"],
+  "trials": 1, "seed": 3, "contact": {"depth_m": 0.15, "peak_torque_nm": 0.5}})",
+                                 "clamped.json");
+  const TrialResult r = RunTrial(study, 0);
+  EXPECT_GT(r.held_samples, 10000);  // every sample of the sweep, at 1.5 kHz
+  EXPECT_GT(r.tip_error_mm[kUncorrected], 1.0);
+  EXPECT_LT(r.tip_error_mm[kDeadZone], 0.5 * r.tip_error_mm[kUncorrected]);
+  EXPECT_LT(r.tip_error_mm[kSmoother], 0.5 * r.tip_error_mm[kUncorrected]);
+  // A sweep has no push direction: the study says so at the key.
+  EXPECT_THROW(ParseStudy(R"({"format": "pliant-study", "version": 1, "description": "t",
+  "scenario": ")" PLIANT_SOURCE_DIR R"(/experiments/scenarios/clamped_beam.json",
+  "scenario_set": ["log.mode=all"], "trials": 1, "seed": 3,
+  "contact": {"direction_deg": {"uniform": [0, 90]}}})", "clamped.json"), io::InputError);
+}
+
+TEST(RunTrial, IdentifyingTheInstrumentRecoversItsCompliance) {
+  // The same push of a shaft 40 % softer than nominal, corrected with the
+  // nominal parameters and with those the paper's procedure identifies on a
+  // simulated bias sweep and clamped beam of that very shaft.
+  const std::string soft = R"({"compliance_scale": 1.4})";
+  const std::string calibration = R"(, "identify": true, "calibration": [
+    {"scenario": ")" PLIANT_SOURCE_DIR R"(/experiments/scenarios/bias_sweep.json",
+     "set": ["hidden_effects={}", "experiment.depths_m=[0.15]", "experiment.step_deg=10",
+             "experiment.move_s=0.2", "experiment.settle_s=0.1", "log.mode=hold_means"]},
+    {"scenario": ")" PLIANT_SOURCE_DIR R"(/experiments/scenarios/clamped_beam.json",
+     "set": ["hidden_effects={}", "experiment.depths_m=[0.10,0.125,0.15,0.175,0.20]",
+             "experiment.tip_step_m=0.0005", "experiment.settle_s=0.1", "experiment.hold_samples=10"]}])";
+  const TrialResult nominal = RunTrial(ShortStudy(soft), 0);
+  const TrialResult identified = RunTrial(ShortStudy(soft, calibration), 0);
+  EXPECT_EQ(nominal.tip_error_mm[kUncorrected], identified.tip_error_mm[kUncorrected]);  // same push
+  EXPECT_LT(identified.tip_error_mm[kEquation2], 0.5 * nominal.tip_error_mm[kEquation2]);
+  EXPECT_LT(identified.tip_error_mm[kDeadZone], 0.5 * nominal.tip_error_mm[kDeadZone]);
+}
+
+}  // namespace
+}  // namespace pliant::experiments
