@@ -171,7 +171,7 @@ void PlotStudy(const std::vector<TrialResult>& rows, const std::string& dir) {
   Figure distribution;
   distribution.title = "tip error per method (" + std::to_string(rows.size()) + " trials)";
   PlotPanel cdf{"cumulative distribution", "RMS tip error over the push (mm)",
-                "fraction of trials", {}};
+                "fraction of trials", {}, "bottom right"};
   for (int m = 0; m < kCorrectionMethods; ++m) {
     auto errors = Column(rows, Error, m);
     std::sort(errors.begin(), errors.end());

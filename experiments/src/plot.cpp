@@ -47,12 +47,12 @@ std::string Script(const Figure& figure, const std::string& path, const std::str
   std::ostringstream s;
   s << "set terminal " << Terminal(figure, path) << "\n"
     << "set output " << Quoted(path) << "\n"
-    << "set termoption noenhanced\nset grid\nset key top left\n"
+    << "set termoption noenhanced\nset grid\n"
     << "set multiplot layout 1," << figure.panels.size() << " title " << Quoted(figure.title)
     << "\n";
   int index = 0;
   for (const PlotPanel& panel : figure.panels) {
-    s << "set title " << Quoted(panel.title) << "\nset xlabel " << Quoted(panel.x_label)
+    s << "set key " << panel.legend << "\nset title " << Quoted(panel.title) << "\nset xlabel " << Quoted(panel.x_label)
       << "\nset ylabel " << Quoted(panel.y_label) << "\nplot ";
     bool first = true;
     for (const PlotSeries& series : panel.series) {

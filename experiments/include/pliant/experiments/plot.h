@@ -28,6 +28,8 @@ struct PlotPanel {
   std::string x_label;
   std::string y_label;
   std::vector<PlotSeries> series;
+  /// gnuplot's `set key` argument: where the legend covers the fewest points.
+  std::string legend = "top left";
 };
 
 struct Figure {
