@@ -101,6 +101,14 @@ void WriteFigure(const Figure& figure, const std::string& path, bool keep_source
     if (!mkdtemp(pattern.data())) throw std::runtime_error("cannot make a temporary directory");
     work = pattern;
   }
+  // The scratch directory goes on every way out, a throw from Script() included.
+  struct RemoveOnExit {
+    fs::path dir;
+    ~RemoveOnExit() {
+      std::error_code ignored;
+      if (!dir.empty()) fs::remove_all(dir, ignored);
+    }
+  } scratch{keep_sources ? fs::path() : work};
   const std::string stem = keep_sources ? picture : (work / "figure").string();
   const std::string data = stem + ".dat", script = stem + ".gp", errors = stem + ".err";
   {
@@ -124,7 +132,6 @@ void WriteFigure(const Figure& figure, const std::string& path, bool keep_source
   const std::string messages((std::istreambuf_iterator<char>(error_stream)), {});
   std::error_code ignored;
   fs::remove(errors, ignored);
-  if (!keep_sources) fs::remove_all(work, ignored);
   if (status != 0) {
     throw std::runtime_error("gnuplot failed to draw " + path + ": " + messages);
   }
