@@ -34,9 +34,9 @@
 //            tip held, MotorMotion)                            σ_effort
 //   q_ref_j  = q_tip_j                             (when the log has it) σ_ref
 // Jacobians come from ceres::Jet. The joints share no state and no
-// measurement while no coupling effect is on, so the filter runs two 4-state
-// blocks of 6 states with sequential scalar updates (Joseph form); q12_cov is
-// then zero.
+// measurement while no coupling effect is on, so the filter runs two blocks
+// of 6 states with sequential scalar updates (Joseph form); q12_cov is then
+// zero.
 //
 // Real time: Step() never allocates, never throws, and takes a bounded time
 // (no loops that depend on the data). A Filter object is not thread-safe: one
