@@ -3,6 +3,7 @@
 //
 //   build/bench/filter_accuracy_bench --params P.json LOG.csv [--free] [--smooth]
 //       [--slow-speed 0.02] [--per-segment] [--trace FROM TO] [--motor-inertia KG_M2] [--accel-time S]
+//       [--clearance-sd RAD] [--offset-sd NM] [--offset-rate NM_S]   (default: the parameters' covariance, else filter.h's defaults)
 //
 // prints, against q1_true/q2_true, the RMS and largest tip error (mm, through
 // the PSM kinematics) of the uncorrected encoders, equation (2), the dead-zone
@@ -69,7 +70,7 @@ std::map<int, double> SegmentSpeeds(const io::LogHeader& header) {
 int Usage() {
   std::fprintf(stderr,
                "usage: filter_accuracy_bench --params P.json LOG.csv [--free] [--smooth] "
-               "[--slow-speed RAD_S] [--per-segment] [--trace FROM TO] [--motor-inertia KG_M2] [--accel-time S]\n");
+               "[--slow-speed RAD_S] [--per-segment] [--trace FROM TO] [--motor-inertia KG_M2] [--accel-time S] [--clearance-sd RAD] [--offset-sd NM] [--offset-rate NM_S]\n");
   return 2;
 }
 
@@ -93,6 +94,12 @@ int main(int argc, char** argv) {
       smooth = true;
     } else if (a == "--motor-inertia" && i + 1 < argc) {
       options.motor_inertia_kg_m2 = std::atof(argv[++i]);
+    } else if (a == "--clearance-sd" && i + 1 < argc) {
+      options.backlash_sd_rad.setConstant(std::atof(argv[++i]));
+    } else if (a == "--offset-sd" && i + 1 < argc) {
+      options.effort_offset_sd_nm.setConstant(std::atof(argv[++i]));
+    } else if (a == "--offset-rate" && i + 1 < argc) {
+      options.effort_offset_rate_nm = std::atof(argv[++i]);
     } else if (a == "--accel-time" && i + 1 < argc) {
       options.acceleration_filter_time_s = std::atof(argv[++i]);
     } else if (a == "--slow-speed" && i + 1 < argc) {

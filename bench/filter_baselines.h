@@ -1,9 +1,9 @@
 #pragma once
 // The two baselines the online filter is measured against (bench/filter_bench.cpp),
 // implementing the same model as estimation/filter.h (its header states it):
-//   DenseFixedEkf    — a straightforward fixed-size Eigen EKF: the 8-state
+//   DenseFixedEkf    — a straightforward fixed-size Eigen EKF: the 12-state
 //                      process and the 4 measurements (q1, q2, tau1, tau2) as
-//                      functions of the whole state, Jacobians by ceres::Jet<8>,
+//                      functions of the whole state, Jacobians by ceres::Jet<12>,
 //                      dense F P Fᵀ + Q, batch update with a 4×4 S and the
 //                      dense Joseph form (I − K H) P (I − K H)ᵀ + K R Kᵀ.
 //   DenseDynamicEkf  — the same with Eigen::MatrixXd / VectorXd.
@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
@@ -24,9 +25,11 @@
 
 namespace pliant::bench {
 
-using Jet8 = ceres::Jet<double, 8>;
+constexpr int kN = 2 * estimation::kFilterJointStates;  // 12
+constexpr int kS = estimation::kFilterJointStates;       // per joint
+using Jet8 = ceres::Jet<double, kN>;
 
-// State order: (q_tip, tau, b, s) of joint 1, then of joint 2.
+// State order: (q_tip, tau, b, s, e, beta) of joint 1, then of joint 2.
 class EkfModel {
  public:
   EkfModel(const models::ModelParameters& p, const estimation::FilterOptions& o)
@@ -34,6 +37,16 @@ class EkfModel {
     for (int j = 0; j < 2; ++j) {
       for (int i = 0; i < 4; ++i) coefficients_[4 * j + i] = Jet8(p.joints[j].compliance.cubic.coefficients[i]);
       delta_[j] = p.joints[j].backlash_rad;
+      const std::string prefix = "joint" + std::to_string(j + 1) + ".";
+      const double sd_delta = estimation::ParameterStandardDeviation(p, prefix + "backlash_rad");
+      const double sd_beta =
+          estimation::ParameterStandardDeviation(p, prefix + "bias_torque.coefficients[0]");
+      sd_delta_[j] = std::isfinite(o.backlash_sd_rad[j]) ? o.backlash_sd_rad[j]
+                     : std::isfinite(sd_delta)          ? sd_delta
+                                                        : o.kDefaultBacklashSdRad;
+      sd_beta_[j] = std::isfinite(o.effort_offset_sd_nm[j]) ? o.effort_offset_sd_nm[j]
+                    : std::isfinite(sd_beta)                ? sd_beta
+                                                            : o.kDefaultEffortOffsetSdNm;
       width_[j] = std::max(p.joints[j].deadzone_width_nm,
                            o.backlash_width_noise_multiple * o.effort_noise_nm);
     }
@@ -44,12 +57,15 @@ class EkfModel {
                T* next) {
     dt_ = dt;
     for (int j = 0; j < 2; ++j) {
-      const T* xj = x + 4 * j;
-      T* nj = next + 4 * j;
+      const T* xj = x + kS * j;
+      T* nj = next + kS * j;
       nj[0] = xj[0] + (tip_fixed ? 0.0 : increment[j]);
       nj[1] = xj[1];
-      nj[2] = models::BacklashHysteresisStep(xj[2], xj[1], delta_[j], width_[j], tip_fixed ? 0.0 : Relax(j, increment[j]));
+      nj[2] = models::BacklashHysteresisStep(xj[2], xj[1], delta_[j] + xj[4], width_[j],
+                                             tip_fixed ? 0.0 : Relax(j, increment[j]));
       nj[3] = xj[3];
+      nj[4] = xj[4];
+      nj[5] = xj[5];
     }
   }
 
@@ -57,11 +73,11 @@ class EkfModel {
   void Measure(const Jet8* x, double depth, Jet8* z) const {
     models::JointState<Jet8> state;
     state.insertion_depth_m = Jet8(depth);
-    state.external_torque_nm << x[1], x[5];
+    state.external_torque_nm << x[1], x[kS + 1];
     const models::Vec2<Jet8> bend = compliance_(coefficients_, state);
     for (int j = 0; j < 2; ++j) {
-      z[j] = x[4 * j] + x[4 * j + 2] + x[4 * j + 3] * bend[j];
-      z[2 + j] = x[4 * j + 1];
+      z[j] = x[kS * j] + x[kS * j + 2] + x[kS * j + 3] * bend[j];
+      z[2 + j] = x[kS * j + 1] + x[kS * j + 5];
     }
   }
 
@@ -70,18 +86,20 @@ class EkfModel {
     return estimation::BacklashRelax(options_, dt_, increment);
   }
 
-  Eigen::Matrix<double, 8, 1> ProcessNoise(const Eigen::Matrix<double, 8, 1>& x, bool tip_fixed,
-                                           const Eigen::Vector2d& increment, double dt) const {
+  Eigen::Matrix<double, kN, 1> ProcessNoise(const Eigen::Matrix<double, kN, 1>& x, bool tip_fixed,
+                                            const Eigen::Vector2d& increment, double dt) const {
     const auto& o = options_;
-    Eigen::Matrix<double, 8, 1> q;
+    Eigen::Matrix<double, kN, 1> q;
     for (int j = 0; j < 2; ++j) {
-      const double sat = models::SmoothSaturation(x[4 * j + 1] / width_[j]);
-      q[4 * j] = tip_fixed ? 0.0 : o.free_tip_rate_rad * o.free_tip_rate_rad * dt;
-      q[4 * j + 1] = o.external_torque_rate_nm * o.external_torque_rate_nm * dt;
+      const double sat = models::SmoothSaturation(x[kS * j + 1] / width_[j]);
+      q[kS * j] = tip_fixed ? 0.0 : o.free_tip_rate_rad * o.free_tip_rate_rad * dt;
+      q[kS * j + 1] = o.external_torque_rate_nm * o.external_torque_rate_nm * dt;
       const double relax = tip_fixed ? 0.0 : Relax(j, increment[j]);
-      q[4 * j + 2] =
+      q[kS * j + 2] =
           estimation::BacklashProcessVariance(o, dt, tip_fixed, relax, sat, delta_[j]);
-      q[4 * j + 3] = o.compliance_scale_rate * o.compliance_scale_rate * dt;
+      q[kS * j + 3] = o.compliance_scale_rate * o.compliance_scale_rate * dt;
+      q[kS * j + 4] = 0.0;
+      q[kS * j + 5] = o.effort_offset_rate_nm * o.effort_offset_rate_nm * dt;
     }
     return q;
   }
@@ -92,7 +110,11 @@ class EkfModel {
   double Compliance(int j, double depth) const {
     return models::ComplianceAt(parameters_.joints[j], depth);
   }
-  double BacklashCap(int j) const { return delta_[j] * delta_[j] / 3.0; }
+  double BacklashCap(int j) const {
+    return (delta_[j] * delta_[j] + sd_delta_[j] * sd_delta_[j]) / 3.0;
+  }
+  double ClearanceVariance(int j) const { return sd_delta_[j] * sd_delta_[j] + 1e-14; }
+  double OffsetVariance(int j) const { return sd_beta_[j] * sd_beta_[j] + 1e-14; }
   double Bias(int j, double q, double depth) const {
     return models::BiasTorqueAt(parameters_.joints[j], q, depth);
   }
@@ -104,14 +126,14 @@ class EkfModel {
   estimation::FilterOptions options_;
   models::ComplianceEffect compliance_;
   Jet8 coefficients_[8];
-  double delta_[2], width_[2];
+  double delta_[2], width_[2], sd_delta_[2], sd_beta_[2];
 };
 
 struct FixedSizeTypes {
-  using V8 = Eigen::Matrix<double, 8, 1>;
-  using M88 = Eigen::Matrix<double, 8, 8>;
-  using M48 = Eigen::Matrix<double, 4, 8>;
-  using M84 = Eigen::Matrix<double, 8, 4>;
+  using V8 = Eigen::Matrix<double, kN, 1>;
+  using M88 = Eigen::Matrix<double, kN, kN>;
+  using M48 = Eigen::Matrix<double, 4, kN>;
+  using M84 = Eigen::Matrix<double, kN, 4>;
   using V4 = Eigen::Vector4d;
   using M44 = Eigen::Matrix4d;
 };
@@ -132,7 +154,7 @@ class DenseEkf {
 
  public:
   DenseEkf(const models::ModelParameters& p, const estimation::FilterOptions& o)
-      : model_(p, o), x_(Vector::Zero(8)), p_(Matrix::Zero(8, 8)) {}
+      : model_(p, o), x_(Vector::Zero(kN)), p_(Matrix::Zero(kN, kN)) {}
 
   void Step(const estimation::FilterSample& s) {
     const auto& o = model_.options();
@@ -140,12 +162,14 @@ class DenseEkf {
       for (int j = 0; j < 2; ++j) {
         const double tau = s.effort_nm[j] - model_.Bias(j, s.encoder_rad[j], s.insertion_depth_m);
         const double b = model_.SteadyBacklash(j, tau);
-        x_.template segment<4>(4 * j) << s.encoder_rad[j] - b - model_.Compliance(j, s.insertion_depth_m) * tau,
-            tau, b, 1.0;
-        p_(4 * j, 4 * j) = o.initial_tip_sd_rad * o.initial_tip_sd_rad;
-        p_(4 * j + 1, 4 * j + 1) = o.initial_torque_sd_nm * o.initial_torque_sd_nm;
-        p_(4 * j + 2, 4 * j + 2) = model_.BacklashCap(j) + 1e-14;
-        p_(4 * j + 3, 4 * j + 3) = o.compliance_scale_sd * o.compliance_scale_sd;
+        x_.template segment<kS>(kS * j) << s.encoder_rad[j] - b - model_.Compliance(j, s.insertion_depth_m) * tau,
+            tau, b, 1.0, 0.0, 0.0;
+        p_(kS * j, kS * j) = o.initial_tip_sd_rad * o.initial_tip_sd_rad;
+        p_(kS * j + 1, kS * j + 1) = o.initial_torque_sd_nm * o.initial_torque_sd_nm;
+        p_(kS * j + 2, kS * j + 2) = model_.BacklashCap(j) + 1e-14;
+        p_(kS * j + 3, kS * j + 3) = o.compliance_scale_sd * o.compliance_scale_sd;
+        p_(kS * j + 4, kS * j + 4) = model_.ClearanceVariance(j);
+        p_(kS * j + 5, kS * j + 5) = model_.OffsetVariance(j);
       }
       initialised_ = true;
       last_time_ = s.time_s;
@@ -170,18 +194,18 @@ class DenseEkf {
     }
     last_encoder_ = s.encoder_rad;
     for (int j = 0; j < 2; ++j) motion_[j].Advance(model_.options(), dt, increment[j]);
-    Jet8 x[8], next[8];
-    for (int i = 0; i < 8; ++i) x[i] = Jet8(x_[i], i);
+    Jet8 x[kN], next[kN];
+    for (int i = 0; i < kN; ++i) x[i] = Jet8(x_[i], i);
     model_.Process(x, s.tip_fixed, increment, dt, next);
-    Matrix f(8, 8);
-    for (int i = 0; i < 8; ++i) {
+    Matrix f(kN, kN);
+    for (int i = 0; i < kN; ++i) {
       x_[i] = next[i].a;
       f.row(i) = next[i].v.transpose();
     }
-    Eigen::Matrix<double, 8, 1> q = model_.ProcessNoise(x_, s.tip_fixed, increment, dt);
+    Eigen::Matrix<double, kN, 1> q = model_.ProcessNoise(x_, s.tip_fixed, increment, dt);
     p_ = (f * p_ * f.transpose()).eval();
     for (int j = 0; j < 2; ++j) {
-      const int b = 4 * j + 2;
+      const int b = kS * j + 2;
       q[b] = std::min(q[b], std::max(0.0, model_.BacklashCap(j) - p_(b, b)));
     }
     p_.diagonal() += q;
@@ -189,10 +213,10 @@ class DenseEkf {
 
   void Update(const estimation::FilterSample& s) {
     const auto& o = model_.options();
-    Jet8 x[8], z[4];
-    for (int i = 0; i < 8; ++i) x[i] = Jet8(x_[i], i);
+    Jet8 x[kN], z[4];
+    for (int i = 0; i < kN; ++i) x[i] = Jet8(x_[i], i);
     model_.Measure(x, s.insertion_depth_m, z);
-    typename Types::M48 h(4, 8);
+    typename Types::M48 h(4, kN);
     typename Types::V4 innovation(4);
     for (int i = 0; i < 4; ++i) h.row(i) = z[i].v.transpose();
     for (int j = 0; j < 2; ++j) {
@@ -202,7 +226,7 @@ class DenseEkf {
     }
     typename Types::M44 r = Types::M44::Zero(4, 4);
     for (int j = 0; j < 2; ++j) {
-      const double deflection = o.deflection_model_error * h(j, 4 * j + 3);  // error × K·tau
+      const double deflection = o.deflection_model_error * h(j, kS * j + 3);  // error × K·tau
       r(j, j) = o.encoder_noise_rad * o.encoder_noise_rad + deflection * deflection;
       r(2 + j, 2 + j) = o.effort_noise_nm * o.effort_noise_nm;
     }
@@ -210,11 +234,14 @@ class DenseEkf {
     const typename Types::M44 innovation_cov = h * ph + r;
     const typename Types::M84 gain = innovation_cov.ldlt().solve(ph.transpose()).transpose();
     x_ += gain * innovation;
-    const Matrix a = Matrix::Identity(8, 8) - gain * h;
+    const Matrix a = Matrix::Identity(kN, kN) - gain * h;
     p_ = (a * p_ * a.transpose() + gain * r * gain.transpose()).eval();
     p_ = (0.5 * (p_ + p_.transpose())).eval();
     for (int j = 0; j < 2; ++j) {
-      x_[4 * j + 2] = std::clamp(x_[4 * j + 2], -model_.delta(j), model_.delta(j));
+      const int e = kS * j + 4;
+      x_[e] = std::clamp(x_[e], -model_.delta(j), model_.delta(j));
+      const double clearance = model_.delta(j) + x_[e];
+      x_[kS * j + 2] = std::clamp(x_[kS * j + 2], -clearance, clearance);
     }
   }
 

@@ -101,7 +101,7 @@ int Usage() {
                "usage: filter_consistency_bench [--runs N] [--every K] [--paper-bias] "
                "[--effort-noise NM] [--encoder-noise RAD] [--torque-rate NM_S] "
                "[--pinned-rate RAD_S] [--backlash-rate RAD_S] [--scale-sd SD] [--scale-rate PER_S] "
-               "[--transit-noise F] [--deflection-error E] "
+               "[--transit-noise F] [--deflection-error E] [--clearance-sd RAD] [--offset-sd NM] "
                "[--inertia KG_M2] [--accel-time S] [--deadzone-width NM] [--width-multiple M] "
                "[--first-seed N] [--per-run] [--scenario FILE] [--trace RUN]\n");
   return 2;
@@ -119,6 +119,10 @@ int main(int argc, char** argv) {
   int first_seed = 1000;
   std::string scenario_path = PLIANT_SOURCE_DIR "/experiments/scenarios/divot.json";
   estimation::FilterOptions options;
+  // The filter is given the instrument's true parameters: its clearance and
+  // bias are known exactly unless a flag says otherwise.
+  options.backlash_sd_rad.setZero();
+  options.effort_offset_sd_nm.setZero();
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     const bool has = i + 1 < argc;
@@ -146,6 +150,10 @@ int main(int argc, char** argv) {
       options.compliance_scale_sd = std::atof(argv[++i]);
     } else if (a == "--deadzone-width" && has) {  // replaces paper.json's, N·m
       deadzone_width = std::atof(argv[++i]);
+    } else if (a == "--clearance-sd" && has) {
+      options.backlash_sd_rad.setConstant(std::atof(argv[++i]));
+    } else if (a == "--offset-sd" && has) {
+      options.effort_offset_sd_nm.setConstant(std::atof(argv[++i]));
     } else if (a == "--deflection-error" && has) {
       options.deflection_model_error = std::atof(argv[++i]);
     } else if (a == "--first-seed" && has) {  // fresh seeds: an out-of-sample check
@@ -257,11 +265,12 @@ int main(int argc, char** argv) {
                 paper_bias ? "of data/paper.json" : "of the truth");
     std::printf("  options: effort %.4g N·m, encoder %.4g rad, torque rate %.4g N·m/√s, pinned "
                 "%.4g rad/√s, backlash %.4g rad/√s, transit %.3g, deflection error %.3g, motor "
-                "inertia %.3g kg·m²\n",
+                "inertia %.3g kg·m², clearance sd %.3g rad, offset sd %.3g N·m\n",
                 options.effort_noise_nm, options.encoder_noise_rad,
                 options.external_torque_rate_nm, options.backlash_pinned_rate_rad,
                 options.backlash_rate_rad, options.backlash_transit_noise,
-                options.deflection_model_error, options.motor_inertia_kg_m2);
+                options.deflection_model_error, options.motor_inertia_kg_m2,
+                options.backlash_sd_rad[0], options.effort_offset_sd_nm[0]);
     Print("one sample per run (independent)", one_per_run, true);
     std::printf("  every %d-th sample (band indicative only: the samples are correlated):\n",
                 every);

@@ -1,4 +1,4 @@
-// The online filter (filter.h). Two 4-state joint blocks, sparse prediction,
+// The online filter (filter.h). Two 6-state joint blocks, sparse prediction,
 // sequential scalar Joseph updates, Jacobians from ceres::Jet. Nothing in
 // Step() allocates or throws: every buffer is sized in the constructor.
 #include "pliant/estimation/filter.h"
@@ -8,6 +8,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include <Eigen/Cholesky>
 #include <ceres/jet.h>
 
 #include "chi_squared.h"
@@ -18,12 +19,15 @@
 namespace pliant::estimation {
 namespace {
 
-// One slot per state of a joint block, (q_tip, tau, b, s). Both joints are
+// One slot per state of a joint block, (q_tip, tau, b, s, e, beta). Both joints are
 // evaluated in one pass with each joint's inputs seeded in its own block's
 // slots: no effect on the filter's path couples the joints, so each output's
 // derivatives are with respect to its own joint's states.
-using StateJet = ceres::Jet<double, 4>;
-constexpr int kTip = 0, kTorque = 1, kBacklash = 2, kScale = 3;
+using StateJet = ceres::Jet<double, kFilterJointStates>;
+constexpr int kTip = kStateTip, kTorque = kStateTorque, kBacklash = kStateBacklash,
+              kScale = kStateScale, kClearance = kStateClearance, kOffset = kStateEffortOffset;
+using Vector = FilterStateVector;
+using Matrix = FilterStateMatrix;
 enum Channel { kEncoderChannel = 0, kEffortChannel = 1, kReferenceChannel = 2 };
 constexpr int kMaxScalarsPerStep = 6;   // 2 encoders, 2 efforts, 2 references
 constexpr double kMaxJointSpeed = 5.0;  // rad/s: a larger encoder increment is not motion
@@ -42,29 +46,36 @@ struct StepTally {
   std::uint32_t flags = 0;
 };
 
-// Joint j's prior covariance: diag(σ_tip0², σ_τ0², δ²/3, σ_s²); b uniform on ±δ.
-Eigen::Matrix4d PriorCovariance(const FilterOptions& o, double delta) {
-  Eigen::Vector4d d(o.initial_tip_sd_rad * o.initial_tip_sd_rad,
-                    o.initial_torque_sd_nm * o.initial_torque_sd_nm, delta * delta / 3.0 + 1e-14,
-                    o.compliance_scale_sd * o.compliance_scale_sd);
+// What the filter does not know about the instrument, per joint: σ_δ, σ_β.
+struct InstrumentUncertainty {
+  double clearance_sd_rad = 0.0;
+  double effort_offset_sd_nm = 0.0;
+};
+
+// Joint j's prior covariance: diag(σ_tip0², σ_τ0², (δ² + σ_δ²)/3, σ_s², σ_δ², σ_β²);
+// b uniform on ±(δ + e). The floors keep P positive definite when σ = 0.
+Matrix PriorCovariance(const FilterOptions& o, double delta, const InstrumentUncertainty& u) {
+  const double sd_delta2 = u.clearance_sd_rad * u.clearance_sd_rad;
+  Vector d;
+  d << o.initial_tip_sd_rad * o.initial_tip_sd_rad,
+      o.initial_torque_sd_nm * o.initial_torque_sd_nm, (delta * delta + sd_delta2) / 3.0 + 1e-14,
+      o.compliance_scale_sd * o.compliance_scale_sd, sd_delta2 + 1e-14,
+      u.effort_offset_sd_nm * u.effort_offset_sd_nm + 1e-14;
   return d.asDiagonal();
 }
 
-// The pivots of P = L·D·Lᵀ, unrolled for 4×4: P is positive definite exactly
-// when all four are > 0 (cheaper than a full Cholesky, every step).
-bool IsPositiveDefinite(const Eigen::Matrix4d& p) {
-  const double d0 = p(0, 0);
-  if (!(d0 > 0.0)) return false;
-  const double l10 = p(1, 0) / d0, l20 = p(2, 0) / d0, l30 = p(3, 0) / d0;
-  const double d1 = p(1, 1) - l10 * l10 * d0;
-  if (!(d1 > 0.0)) return false;
-  const double l21 = (p(2, 1) - l20 * l10 * d0) / d1;
-  const double l31 = (p(3, 1) - l30 * l10 * d0) / d1;
-  const double d2 = p(2, 2) - l20 * l20 * d0 - l21 * l21 * d1;
-  if (!(d2 > 0.0)) return false;
-  const double l32 = (p(3, 2) - l30 * l20 * d0 - l31 * l21 * d1) / d2;
-  const double d3 = p(3, 3) - l30 * l30 * d0 - l31 * l31 * d1 - l32 * l32 * d2;
-  return d3 > 0.0;
+// Fixed-size Cholesky: no allocation, a bounded number of operations.
+bool IsPositiveDefinite(const Matrix& p) {
+  return Eigen::LLT<Matrix>(p).info() == Eigen::Success;
+}
+
+// The option when it is given (finite), else the parameters' covariance,
+// else the documented default.
+double ResolveSd(double option, const models::ModelParameters& p, const std::string& name,
+                 double fallback) {
+  if (std::isfinite(option)) return option;
+  const double from_covariance = ParameterStandardDeviation(p, name);
+  return std::isfinite(from_covariance) ? from_covariance : fallback;
 }
 
 }  // namespace
@@ -72,6 +83,17 @@ bool IsPositiveDefinite(const Eigen::Matrix4d& p) {
 // The fraction of its wall an unloaded shaft forgets in one step: with time
 // constant T while the joint moves (an encoder increment of 3 counts or more
 // per step counts fully, less in proportion), nothing while it rests.
+double ParameterStandardDeviation(const models::ModelParameters& p, const std::string& name) {
+  if (!p.covariance) return std::numeric_limits<double>::quiet_NaN();
+  const auto& names = p.covariance->names;
+  const auto it = std::find(names.begin(), names.end(), name);
+  const auto i = static_cast<Eigen::Index>(it - names.begin());
+  if (it == names.end() || i >= p.covariance->matrix.rows()) {
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+  return std::sqrt(std::max(0.0, p.covariance->matrix(i, i)));
+}
+
 double BacklashRelax(const FilterOptions& o, double dt, double encoder_increment) {
   const double count = 3.4641016151377544 * o.encoder_noise_rad;  // σ_enc = count/√12
   const double moving = std::min(1.0, std::abs(encoder_increment) / (3.0 * count));
@@ -119,8 +141,8 @@ struct ComplianceFilter::Impl {
 
   void Initialise(const FilterSample& sample, double depth);
   void Predict(int j, double dt, bool tip_fixed, double encoder_increment);
-  void EncoderModel(double depth, Eigen::Vector2d* predicted, Eigen::Vector4d* h) const;
-  void ScalarUpdate(int j, Channel channel, const Eigen::Vector4d& h, double innovation,
+  void EncoderModel(double depth, Eigen::Vector2d* predicted, Vector* h) const;
+  void ScalarUpdate(int j, Channel channel, const Vector& h, double innovation,
                     double variance, StepTally* tally, bool implausible = false);
   void Repair(int j, const FilterSample& sample, StepTally* tally);
   void UpdateWindow(StepTally* tally);
@@ -131,6 +153,7 @@ struct ComplianceFilter::Impl {
   std::array<StateJet, 8> compliance_coefficients;  // constants (zero derivatives)
   double delta[2];
   double width[2];
+  InstrumentUncertainty uncertainty[2];
   double gate;
   std::vector<double> window_threshold;  // by total dof in the window
   std::vector<double> window_nis;        // ring buffer, one entry per sample
@@ -164,6 +187,12 @@ ComplianceFilter::Impl::Impl(const models::ModelParameters& p, const FilterOptio
       compliance_coefficients[4 * j + i] = StateJet(joint_parameters.compliance.cubic.coefficients[i]);
     }
     delta[j] = joint_parameters.backlash_rad;
+    const std::string prefix = "joint" + std::to_string(j + 1) + ".";
+    uncertainty[j].clearance_sd_rad = ResolveSd(o.backlash_sd_rad[j], p, prefix + "backlash_rad",
+                                                FilterOptions::kDefaultBacklashSdRad);
+    uncertainty[j].effort_offset_sd_nm =
+        ResolveSd(o.effort_offset_sd_nm[j], p, prefix + "bias_torque.coefficients[0]",
+                  FilterOptions::kDefaultEffortOffsetSdNm);
     // The width over which the filter lets the load pin the shaft: the
     // parameters' dead-zone width, but never below what the effort noise can
     // resolve (an identified physical width of 0.02 N·m under 0.01 N·m of
@@ -199,8 +228,8 @@ void ComplianceFilter::Impl::Reset() {
   initialised = false;
   last_tip_fixed = false;
   for (int j = 0; j < 2; ++j) {
-    joint[j].mean << 0.0, 0.0, 0.0, 1.0;
-    joint[j].covariance = PriorCovariance(options, delta[j]);
+    joint[j].mean << 0.0, 0.0, 0.0, 1.0, 0.0, 0.0;
+    joint[j].covariance = PriorCovariance(options, delta[j], uncertainty[j]);
     transition[j] = FilterTransition{};
     for (int& r : rejections[j]) r = 0;
     motion[j] = MotorMotion{};
@@ -222,8 +251,8 @@ void ComplianceFilter::Impl::Initialise(const FilterSample& sample, double depth
     // correction), so that the first encoder update adds no information twice.
     const double b = delta[j] * models::SmoothSaturation(tau / width[j]);
     const double tip = q - b - models::ComplianceAt(parameters.joints[j], depth_m) * tau;
-    joint[j].mean << tip, tau, b, 1.0;
-    joint[j].covariance = PriorCovariance(options, delta[j]);
+    joint[j].mean << tip, tau, b, 1.0, 0.0, 0.0;
+    joint[j].covariance = PriorCovariance(options, delta[j], uncertainty[j]);
     transition[j] = FilterTransition{};
     transition[j].predicted_mean = joint[j].mean;
     last_encoder[j] = q;
@@ -231,7 +260,7 @@ void ComplianceFilter::Impl::Initialise(const FilterSample& sample, double depth
   initialised = true;
 }
 
-// F = I but for b's row (∂b+/∂tau, ∂b+/∂b from the hysteresis step's Jet), so
+// F = I but for b's row (∂b+/∂tau, ∂b+/∂b, ∂b+/∂e from the hysteresis step's Jet), so
 // F·P·Fᵀ touches only b's row and column.
 void ComplianceFilter::Impl::Predict(int j, double dt, bool tip_fixed, double encoder_increment) {
   FilterJointState& s = joint[j];
@@ -245,9 +274,12 @@ void ComplianceFilter::Impl::Predict(int j, double dt, bool tip_fixed, double en
   const double relax = tip_fixed ? 0.0 : BacklashRelax(o, dt, encoder_increment);
   const StateJet tau(s.mean[kTorque], kTorque);
   const StateJet b(s.mean[kBacklash], kBacklash);
-  const StateJet next = models::BacklashHysteresisStep(b, tau, delta[j], width[j], relax);
+  // The shaft's wall is at the instrument's clearance δ + e, not the nominal δ.
+  const StateJet clearance = delta[j] + StateJet(s.mean[kClearance], kClearance);
+  const StateJet next = models::BacklashHysteresisStep(b, tau, clearance, width[j], relax);
   const double fbt = next.v[kTorque];
   const double fbb = next.v[kBacklash];
+  const double fbe = next.v[kClearance];
   // How firmly the load holds the shaft on a wall: S² = 1 beyond the width,
   // 0 at no load (BacklashProcessVariance).
   const double saturation = models::SmoothSaturation(s.mean[kTorque] / width[j]);
@@ -255,35 +287,39 @@ void ComplianceFilter::Impl::Predict(int j, double dt, bool tip_fixed, double en
   s.mean[kTip] += tip_fixed ? 0.0 : encoder_increment;
   s.mean[kBacklash] = next.a;
 
-  Eigen::Matrix4d& P = s.covariance;
-  const Eigen::Vector4d row = fbt * P.col(kTorque) + fbb * P.col(kBacklash);
-  const double pbb = fbt * row[kTorque] + fbb * row[kBacklash];
+  Matrix& P = s.covariance;
+  const Vector row = fbt * P.col(kTorque) + fbb * P.col(kBacklash) + fbe * P.col(kClearance);
+  const double pbb = fbt * row[kTorque] + fbb * row[kBacklash] + fbe * row[kClearance];
   P.col(kBacklash) = row;
   P.row(kBacklash) = row.transpose();
   P(kBacklash, kBacklash) = pbb;
 
-  Eigen::Vector4d q;
+  Vector q;
   q[kTip] = tip_fixed ? 0.0 : o.free_tip_rate_rad * o.free_tip_rate_rad * dt;
   q[kTorque] = o.external_torque_rate_nm * o.external_torque_rate_nm * dt;
-  const double prior_variance = delta[j] * delta[j] / 3.0;
+  const double sd_delta = uncertainty[j].clearance_sd_rad;
+  const double prior_variance = (delta[j] * delta[j] + sd_delta * sd_delta) / 3.0;
   const double diffusion =
       BacklashProcessVariance(o, dt, tip_fixed, relax, saturation, delta[j]);
-  // b lives in ±δ: its variance never needs to exceed the uniform's δ²/3.
+  // b lives in ±(δ + e): its variance never needs to exceed the uniform's (δ² + σ_δ²)/3.
   q[kBacklash] = std::min(diffusion, std::max(0.0, prior_variance - pbb));
   q[kScale] = o.compliance_scale_rate * o.compliance_scale_rate * dt;
+  q[kClearance] = 0.0;
+  q[kOffset] = o.effort_offset_rate_nm * o.effort_offset_rate_nm * dt;
   P.diagonal() += q;
 
   t.predicted_mean = s.mean;
   t.f_backlash_torque = fbt;
   t.f_backlash_backlash = fbb;
+  t.f_backlash_clearance = fbe;
   t.process_noise = q;
   t.predicted = true;
 }
 
 // h_j(x) = q_tip_j + b_j + s_j·K_j(L)·tau_j, K from the ComplianceEffect; its
-// Jet gives the value and the row ∂h_j/∂(q_tip, tau, b, s).
+// Jet gives the value and the row ∂h_j/∂(q_tip, tau, b, s, e, beta).
 void ComplianceFilter::Impl::EncoderModel(double depth_m, Eigen::Vector2d* predicted,
-                                          Eigen::Vector4d* h) const {
+                                          Vector* h) const {
   models::JointState<StateJet> state;
   state.insertion_depth_m = StateJet(depth_m);
   for (int j = 0; j < 2; ++j) {
@@ -303,12 +339,12 @@ void ComplianceFilter::Impl::EncoderModel(double depth_m, Eigen::Vector2d* predi
 // χ² gate. After `reacquire_after` consecutive rejections on a channel the
 // prior covariance is added to the block and the measurement is taken: the
 // world has changed (a slip, a new contact) and the filter must follow it.
-void ComplianceFilter::Impl::ScalarUpdate(int j, Channel channel, const Eigen::Vector4d& h,
+void ComplianceFilter::Impl::ScalarUpdate(int j, Channel channel, const Vector& h,
                                           double innovation, double variance, StepTally* tally,
                                           bool implausible) {
   FilterJointState& s = joint[j];
-  Eigen::Matrix4d& P = s.covariance;
-  Eigen::Vector4d u = P * h;
+  Matrix& P = s.covariance;
+  Vector u = P * h;
   double S = h.dot(u) + variance;
   double nis = innovation * innovation / S;
   int& rejected = rejections[j][channel];
@@ -323,7 +359,7 @@ void ComplianceFilter::Impl::ScalarUpdate(int j, Channel channel, const Eigen::V
     // sample); a jump within ±δ is left to the backlash, which is what moves
     // at low load. Reference: the tip, by the innovation.
     // Each channel re-opens the states it measures most directly.
-    const Eigen::Matrix4d prior = PriorCovariance(options, delta[j]);
+    const Matrix prior = PriorCovariance(options, delta[j], uncertainty[j]);
     if (channel == kEffortChannel) P(kTorque, kTorque) += prior(kTorque, kTorque);
     if (channel == kReferenceChannel) P(kTip, kTip) += innovation * innovation;
     if (channel == kEncoderChannel) {
@@ -340,13 +376,13 @@ void ComplianceFilter::Impl::ScalarUpdate(int j, Channel channel, const Eigen::V
     tally->window_dof += 1;
   }
   rejected = 0;
-  const Eigen::Vector4d k = u / S;
+  const Vector k = u / S;
   // Joseph form for one scalar, P+ = (I − k hᵀ) P (I − k hᵀ)ᵀ + k r kᵀ, which
   // for any gain k (not only the optimal one) expands exactly to
   //   P+ = P − k uᵀ − u kᵀ + S k kᵀ = P + k vᵀ + v kᵀ,   v = S k / 2 − u.
   // Written this way it costs two outer products and is symmetric to the
   // last bit (each entry adds the same two products in either order).
-  const Eigen::Vector4d v = 0.5 * S * k - u;
+  const Vector v = 0.5 * S * k - u;
   P += k * v.transpose() + v * k.transpose();
   s.mean += k * innovation;
   tally->nis += nis;
@@ -355,12 +391,15 @@ void ComplianceFilter::Impl::ScalarUpdate(int j, Channel channel, const Eigen::V
 
 void ComplianceFilter::Impl::Repair(int j, const FilterSample& sample, StepTally* tally) {
   FilterJointState& s = joint[j];
-  s.mean[kBacklash] = std::clamp(s.mean[kBacklash], -delta[j], delta[j]);
+  // A clearance is never negative nor twice the nominal one.
+  s.mean[kClearance] = std::clamp(s.mean[kClearance], -delta[j], delta[j]);
+  const double clearance = delta[j] + s.mean[kClearance];
+  s.mean[kBacklash] = std::clamp(s.mean[kBacklash], -clearance, clearance);
   s.mean[kScale] = std::clamp(s.mean[kScale], kMinScale, kMaxScale);
   if (!s.mean.allFinite() || !s.covariance.allFinite()) {
     const double q = std::isfinite(sample.encoder_rad[j]) ? sample.encoder_rad[j] : 0.0;
-    s.mean << q, 0.0, 0.0, 1.0;
-    s.covariance = PriorCovariance(options, delta[j]);
+    s.mean << q, 0.0, 0.0, 1.0, 0.0, 0.0;
+    s.covariance = PriorCovariance(options, delta[j], uncertainty[j]);
     tally->flags |= kFlagRepaired;
     return;
   }
@@ -418,7 +457,7 @@ FilterEstimate ComplianceFilter::Impl::Step(const FilterSample& sample) {
       if (released) {
         // Held again elsewhere, after a transit the log does not show: the tip
         // and the load start again from their priors.
-        const Eigen::Matrix4d prior = PriorCovariance(options, delta[j]);
+        const Matrix prior = PriorCovariance(options, delta[j], uncertainty[j]);
         joint[j].covariance(kTip, kTip) += prior(kTip, kTip);
         joint[j].covariance(kTorque, kTorque) += prior(kTorque, kTorque);
         transition[j].process_noise[kTip] += prior(kTip, kTip);
@@ -431,8 +470,8 @@ FilterEstimate ComplianceFilter::Impl::Step(const FilterSample& sample) {
   }
   last_tip_fixed = sample.tip_fixed;
 
-  // Efforts: tau_meas − tau0(q_enc, L) = tau (tau0 is evaluated at the
-  // measured angle, an input, so its row is the unit vector of tau).
+  // Efforts: tau_meas − tau0(q_enc, L) = tau + beta (tau0 is evaluated at the
+  // measured angle, an input, so its row is the unit vectors of tau and beta).
   for (int j = 0; j < 2; ++j) {
     const double effort = sample.effort_nm[j];
     if (!std::isfinite(effort)) {
@@ -452,13 +491,13 @@ FilterEstimate ComplianceFilter::Impl::Step(const FilterSample& sample) {
     // clearance during the long free-tip rests of a divot log and moved the
     // tip by δ (docs/validation.md, Part 4).
     const double inertial = sample.tip_fixed ? motion[j].InertialTorque(options) : 0.0;
-    ScalarUpdate(j, kEffortChannel, Eigen::Vector4d::Unit(kTorque),
-                 effort - tau0 - inertial - joint[j].mean[kTorque],
+    ScalarUpdate(j, kEffortChannel, Vector::Unit(kTorque) + Vector::Unit(kOffset),
+                 effort - tau0 - inertial - joint[j].mean[kTorque] - joint[j].mean[kOffset],
                  options.effort_noise_nm * options.effort_noise_nm, &tally);
   }
   // Encoders, linearised at the state the efforts just updated.
   Eigen::Vector2d predicted;
-  Eigen::Vector4d h[2];
+  Vector h[2];
   EncoderModel(depth, &predicted, h);
   for (int j = 0; j < 2; ++j) {
     if (!std::isfinite(sample.encoder_rad[j])) {
@@ -474,7 +513,7 @@ FilterEstimate ComplianceFilter::Impl::Step(const FilterSample& sample) {
   for (int j = 0; j < 2; ++j) {
     const double ref = sample.reference_rad[j];
     if (!std::isfinite(ref)) continue;  // most logs have no reference: not "missing"
-    ScalarUpdate(j, kReferenceChannel, Eigen::Vector4d::Unit(kTip), ref - joint[j].mean[kTip],
+    ScalarUpdate(j, kReferenceChannel, Vector::Unit(kTip), ref - joint[j].mean[kTip],
                  options.reference_noise_rad * options.reference_noise_rad, &tally);
   }
   for (int j = 0; j < 2; ++j) Repair(j, sample, &tally);
@@ -504,6 +543,8 @@ FilterEstimate MakeEstimate(const FilterJointState& joint1, const FilterJointSta
     e.external_torque_nm[j] = x[kTorque];
     e.backlash_offset_rad[j] = x[kBacklash];
     e.compliance_scale[j] = x[kScale];
+    e.clearance_error_rad[j] = x[kClearance];
+    e.effort_offset_nm[j] = x[kOffset];
   }
   // Tip correction: the uncorrected tip (encoders) minus the corrected one,
   // through J = r·diag(cos q2, 1) (mm/rad); encoders are exact at this scale,

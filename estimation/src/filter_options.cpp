@@ -58,6 +58,24 @@ bool FilterOptions::IsValid(std::string* error) const {
     return Fail(error, "FilterOptions::compliance_scale_rate must be finite and >= 0 — use 0 "
                        "for a compliance that does not change during the log");
   }
+  for (int j = 0; j < 2; ++j) {
+    const std::string joint = "[" + std::to_string(j) + "]";
+    if (!(std::isnan(backlash_sd_rad[j]) || (std::isfinite(backlash_sd_rad[j]) && backlash_sd_rad[j] >= 0.0))) {
+      return Fail(error, "FilterOptions::backlash_sd_rad" + joint + " must be NaN (from the "
+                         "parameters' covariance) or finite and >= 0 — σ of the clearance in rad, "
+                         "e.g. 0.001");
+    }
+    if (!(std::isnan(effort_offset_sd_nm[j]) ||
+          (std::isfinite(effort_offset_sd_nm[j]) && effort_offset_sd_nm[j] >= 0.0))) {
+      return Fail(error, "FilterOptions::effort_offset_sd_nm" + joint + " must be NaN (from the "
+                         "parameters' covariance) or finite and >= 0 — σ of the bias torque's "
+                         "offset in N·m, e.g. 0.02");
+    }
+  }
+  if (!(std::isfinite(effort_offset_rate_nm) && effort_offset_rate_nm >= 0.0)) {
+    return Fail(error, "FilterOptions::effort_offset_rate_nm must be finite and >= 0 — N·m/√s, "
+                       "or 0 for a constant offset");
+  }
   if (!(std::isfinite(backlash_transit_noise) && backlash_transit_noise >= 0.0)) {
     return Fail(error, "FilterOptions::backlash_transit_noise must be finite and >= 0 — a "
                        "fraction of the clearance's variance, e.g. 1, or 0 for a certain pull");

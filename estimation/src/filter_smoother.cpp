@@ -5,26 +5,23 @@
 namespace pliant::estimation {
 namespace {
 
-constexpr int kTorque = 1, kBacklash = 2;
+constexpr int kTorque = kStateTorque, kBacklash = kStateBacklash, kClearance = kStateClearance;
+using Matrix = FilterStateMatrix;
 
-// F·P·Fᵀ + Q with F = I but for b's row (as the filter predicts).
-Eigen::Matrix4d Predicted(const Eigen::Matrix4d& p, const FilterTransition& t) {
-  Eigen::Matrix4d out = p;
-  const Eigen::Vector4d row =
-      t.f_backlash_torque * p.col(kTorque) + t.f_backlash_backlash * p.col(kBacklash);
-  out.col(kBacklash) = row;
-  out.row(kBacklash) = row.transpose();
-  out(kBacklash, kBacklash) =
-      t.f_backlash_torque * row[kTorque] + t.f_backlash_backlash * row[kBacklash];
-  out.diagonal() += t.process_noise;
-  return out;
-}
-
-Eigen::Matrix4d TransitionMatrix(const FilterTransition& t) {
-  Eigen::Matrix4d f = Eigen::Matrix4d::Identity();
+Matrix TransitionMatrix(const FilterTransition& t) {
+  Matrix f = Matrix::Identity();
   f(kBacklash, kTorque) = t.f_backlash_torque;
   f(kBacklash, kBacklash) = t.f_backlash_backlash;
+  f(kBacklash, kClearance) = t.f_backlash_clearance;
   return f;
+}
+
+// F·P·Fᵀ + Q with F = I but for b's row (as the filter predicts).
+Matrix Predicted(const Matrix& p, const FilterTransition& t) {
+  const Matrix f = TransitionMatrix(t);
+  Matrix out = f * p * f.transpose();
+  out.diagonal() += t.process_noise;
+  return out;
 }
 
 }  // namespace
@@ -64,11 +61,10 @@ void FilterSmoother::Smooth() {
       const JointRecord& next = steps_[k + 1].joint[j];
       if (!next.transition.predicted) continue;  // a restart: nothing links k to k+1
       FilterJointState& here = steps_[k].joint[j].state;
-      const Eigen::Matrix4d p_pred = Predicted(here.covariance, next.transition);
-      const Eigen::Matrix4d f = TransitionMatrix(next.transition);
+      const Matrix p_pred = Predicted(here.covariance, next.transition);
+      const Matrix f = TransitionMatrix(next.transition);
       // C = P̂ Fᵀ (P⁻)⁻¹ = ((P⁻)⁻¹ F P̂)ᵀ, P⁻ and P̂ symmetric.
-      const Eigen::Matrix4d gain =
-          p_pred.ldlt().solve(f * here.covariance).transpose();
+      const Matrix gain = p_pred.ldlt().solve(f * here.covariance).transpose();
       here.mean += gain * (next.state.mean - next.transition.predicted_mean);
       here.covariance += gain * (next.state.covariance - p_pred) * gain.transpose();
       here.covariance = 0.5 * (here.covariance + here.covariance.transpose()).eval();

@@ -1,10 +1,15 @@
 // One Monte Carlo trial (montecarlo_trial.h): simulate a divot push (or a
 // clamped-beam sweep) of a drawn instrument, correct it five ways, score each
 // against the simulator's truth.
+#include <algorithm>
 #include <cmath>
+#include <string>
 #include <stdexcept>
 
 #include <Eigen/Dense>
+#include <boost/math/distributions/lognormal.hpp>
+#include <boost/math/distributions/normal.hpp>
+#include <boost/math/distributions/uniform.hpp>
 
 #include "pliant/estimation/compliance_correction.h"
 #include "pliant/estimation/filter_log.h"
@@ -52,6 +57,61 @@ models::ModelParameters Identify(const Study& study, const Truth& truth, const T
   }
   auto prior = NominalParameters(study, draw.values[kDepthM]);
   return estimation::RunPaperProcedure(data, prior).parameters;
+}
+
+// How far a drawn quantity lies from the value the filter is given, as a
+// root mean square: its standard deviation and its mean's distance from that
+// value (the clamp to its physical range is ignored: it cuts far tails only).
+// A lab knows how much its instruments vary, and about what.
+double RmsAbout(const Distribution& d, double given) {
+  double mean = d.a, sd = 0.0;
+  if (d.Varies()) {
+    switch (d.kind) {
+      case Distribution::Kind::kUniform: {
+        const boost::math::uniform u(d.a, d.b);
+        mean = boost::math::mean(u), sd = boost::math::standard_deviation(u);
+        break;
+      }
+      case Distribution::Kind::kNormal:
+        mean = d.a, sd = d.b;
+        break;
+      case Distribution::Kind::kLogNormal: {
+        const boost::math::lognormal l(std::log(d.a), d.b);
+        mean = boost::math::mean(l), sd = boost::math::standard_deviation(l);
+        break;
+      }
+      case Distribution::Kind::kConstant:
+        break;
+    }
+  }
+  return std::hypot(sd, mean - given);
+}
+
+// The filter's prior on the instrument: the study's spread about the nominal
+// parameters, or what identification says where it gives a covariance (the
+// filter reads it when the option is left NaN). The compliance scale keeps
+// the filter's own allowance for the K(L) law when the spread is smaller.
+void InstrumentPrior(const Study& study, const models::ModelParameters& parameters,
+                     estimation::FilterOptions* options) {
+  const auto& q = study.quantities;
+  const auto identified = [&](const std::string& name) {
+    return study.identify && std::isfinite(estimation::ParameterStandardDeviation(parameters, name));
+  };
+  if (!study.identify) {
+    options->compliance_scale_sd = std::max({options->compliance_scale_sd,
+                                             RmsAbout(q[kComplianceScale1], 1.0),
+                                             RmsAbout(q[kComplianceScale2], 1.0)});
+  }
+  for (int j = 0; j < 2; ++j) {
+    const std::string prefix = "joint" + std::to_string(j + 1) + ".";
+    options->backlash_sd_rad[j] =
+        identified(prefix + "backlash_rad")
+            ? estimation::FilterOptions::kFromParameters
+            : RmsAbout(q[kBacklash1Rad + j], parameters.joints[j].backlash_rad);
+    options->effort_offset_sd_nm[j] = identified(prefix + "bias_torque.coefficients[0]")
+                                          ? estimation::FilterOptions::kFromParameters
+                                          : RmsAbout(q[kBiasOffset1Nm + j], 0.0);
+  }
 }
 
 struct Honesty {
@@ -143,6 +203,7 @@ TrialResult RunTrial(const Study& study, int trial) {
   // under study: the filter is told it (docs/filter.md, motor inertia), as a
   // lab would from the arm's dynamic identification.
   options.motor_inertia_kg_m2 = push.joint.inertia_kg_m2.mean();
+  InstrumentPrior(study, parameters, &options);
   estimation::FilterSmoother smoother(parameters, options);
 
   const io::StandardColumns c(log.header);

@@ -49,9 +49,9 @@ extern "C" void* realloc(void* p, std::size_t size) {
 namespace pliant::estimation {
 namespace {
 
-bool IsHealthy(const Eigen::Matrix4d& p) {
+bool IsHealthy(const pliant::estimation::FilterStateMatrix& p) {
   if (!p.allFinite() || p != p.transpose()) return false;
-  return Eigen::LLT<Eigen::Matrix4d>(p).info() == Eigen::Success;
+  return Eigen::LLT<pliant::estimation::FilterStateMatrix>(p).info() == Eigen::Success;
 }
 
 TEST(FilterRealTime, StepNeverAllocates) {

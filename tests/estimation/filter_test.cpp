@@ -20,9 +20,9 @@ using testing::SyntheticOptions;
 
 constexpr double kDelta1 = 0.008478;
 
-bool IsSymmetricPositiveDefinite(const Eigen::Matrix4d& p) {
+bool IsSymmetricPositiveDefinite(const estimation::FilterStateMatrix& p) {
   if (!p.allFinite() || !p.isApprox(p.transpose(), 1e-12)) return false;
-  return Eigen::LLT<Eigen::Matrix4d>(p).info() == Eigen::Success;
+  return Eigen::LLT<estimation::FilterStateMatrix>(p).info() == Eigen::Success;
 }
 
 // A log drawn from the filter's own model (filter_synthetic.h) has no
@@ -30,6 +30,9 @@ bool IsSymmetricPositiveDefinite(const Eigen::Matrix4d& p) {
 FilterOptions ModelLogOptions() {
   FilterOptions o;
   o.deflection_model_error = 0.0;
+  // The synthetic logs are drawn with the parameters' own clearance and bias.
+  o.backlash_sd_rad.setZero();
+  o.effort_offset_sd_nm.setZero();
   return o;
 }
 
@@ -309,7 +312,7 @@ TEST(ComplianceFilter, NeesAndCoverageAreConsistentOverAHundredRuns) {
   }
 }
 
-// Two blocks with sequential scalar Joseph updates give the dense 8-state
+// Two blocks with sequential scalar Joseph updates give the dense 12-state
 // filter's answer (bench/filter_baselines.h): the same model, the same numbers.
 // With the compliance known the model is linear in the state but for the
 // backlash step, and the two agree to 1e-3 σ; with it uncertain, s·K·τ is
@@ -335,8 +338,8 @@ void CompareWithDense(double compliance_scale_sd, double mean_tolerance_sd, doub
     const auto e = fast.Step(s);
     dense.Step(s);
     for (int j = 0; j < 2; ++j) {
-      const double sd = std::sqrt(dense.covariance()(4 * j, 4 * j));
-      worst_mean = std::max(worst_mean, std::abs(e.corrected_rad[j] - dense.mean()[4 * j]) / sd);
+      const double sd = std::sqrt(dense.covariance()(6 * j, 6 * j));
+      worst_mean = std::max(worst_mean, std::abs(e.corrected_rad[j] - dense.mean()[6 * j]) / sd);
       worst_sd = std::max(worst_sd, std::abs(std::sqrt(e.covariance_rad2(j, j)) / sd - 1.0));
     }
   }

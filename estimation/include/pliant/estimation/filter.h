@@ -4,32 +4,39 @@
 // efforts every control period, and returns corrected joint angles with their
 // covariance. docs/filter.md derives it; this header is the contract.
 //
-// State, per joint j (both joints in one filter, 8 states):
+// State, per joint j (both joints in one filter, 12 states):
 //   q_tip_j   rad    corrected (tip-consistent) joint angle
 //   tau_j     N·m    external torque
-//   b_j       rad    backlash offset inside the clearance, |b_j| <= delta_j
+//   b_j       rad    backlash offset inside the clearance, |b_j| <= delta_j + e_j
 //   s_j       1      compliance scale: the shaft's compliance is s_j·K_j(L)
+//   e_j       rad    clearance error: the instrument's clearance is delta_j + e_j
+//                    (constant, prior 0 ± σ_δ; learned when the shaft crosses it)
+//   beta_j    N·m    effort offset: the bias torque misses a constant beta_j
+//                    (prior 0 ± σ_β; a held tip cannot tell it from the load,
+//                    so its variance flows into q_tip through K)
 //
 // Process (period dt):
 //   q_tip+ = q_tip                           while the tip is fixed (no noise)
 //   q_tip+ = q_tip + (q_enc,k − q_enc,k−1)    otherwise, + noise σ_free²·dt
 //   tau+   = tau + noise σ_τ̇²·dt            (random walk)
-//   b+     = BacklashHysteresisStep(b, tau, r)  (models/effects/backlash_hysteresis.h;
+//   b+     = BacklashHysteresisStep(b, tau, delta + e, r)  (models/effects/backlash_hysteresis.h;
 //            r = 1 − e^(−dt/T) while the joint moves, 0 at rest: BacklashRelax)
 //            + noise ((1 − g)·u + c·g·(1 − g)·δ²/3 + σ_pinned²·dt), variance ≤ δ²/3,
 //            g = S(tau/w)², u = σ_b²·dt (tip held, r = 0) or (1 − (1 − r)²)·δ²/3
 //            (tip free); c = backlash_transit_noise with the tip held, 0 free
 //            (BacklashProcessVariance)
 //   s+     = s + noise σ_ṡ²·dt
+//   e+     = e;  beta+ = beta + noise σ_β̇²·dt
 // Measurements:
 //   q_enc_j  = q_tip_j + b_j + s_j·K_j(L)·tau_j   (ComplianceEffect)
 //            variance σ_enc² + (ε·K_j(L)·tau_j)², ε = deflection_model_error
-//   tau_meas_j − tau0_j(q_enc, L) − J·θ̈_j = tau_j  (bias torque; J·θ̈ with the
+//   tau_meas_j − tau0_j(q_enc, L) − J·θ̈_j = tau_j + beta_j  (bias torque; J·θ̈ with the
 //            tip held, MotorMotion)                            σ_effort
 //   q_ref_j  = q_tip_j                             (when the log has it) σ_ref
 // Jacobians come from ceres::Jet. The joints share no state and no
-// measurement while no coupling effect is on, so the filter runs two 4-state
-// blocks with sequential scalar updates (Joseph form); q12_cov is then zero.
+// measurement while no coupling effect is on, so the filter runs two blocks
+// of 6 states with sequential scalar updates (Joseph form); q12_cov is then
+// zero.
 //
 // Real time: Step() never allocates, never throws, and takes a bounded time
 // (no loops that depend on the data). A Filter object is not thread-safe: one
@@ -90,6 +97,25 @@ struct FilterOptions {
   double deflection_model_error = 0.06;
   // Priors.
   double compliance_scale_sd = 0.1;       ///< s starts at 1 ± this
+  /// σ_δ per joint (rad): how far the instrument's clearance may lie from the
+  /// parameters' backlash_rad. NaN (the default): the parameters' covariance
+  /// of "jointN.backlash_rad" when they carry one, else
+  /// kDefaultBacklashSdRad. 0: the clearance is known exactly.
+  Eigen::Vector2d backlash_sd_rad{kFromParameters, kFromParameters};
+  /// σ_β per joint (N·m): a constant offset the bias torque tau0 may miss.
+  /// NaN (the default): the parameters' covariance of
+  /// "jointN.bias_torque.coefficients[0]" (the Fourier mean) when they carry
+  /// one, else kDefaultEffortOffsetSdNm. 0: the bias torque is exact.
+  Eigen::Vector2d effort_offset_sd_nm{kFromParameters, kFromParameters};
+  double effort_offset_rate_nm = 0.0;     ///< σ_β̇, N·m/√s (0: a constant offset)
+  static constexpr double kFromParameters = std::numeric_limits<double>::quiet_NaN();
+  /// Without a covariance: the clearance of one instrument vs another of the
+  /// same model (the dVRK files' two joints differ by 1.3 mrad; the Monte
+  /// Carlo study's uniform 6–10 mrad has σ 1.15 mrad).
+  static constexpr double kDefaultBacklashSdRad = 1e-3;
+  /// Without a covariance: twice the effort noise of a Classic PSM; a bias
+  /// table identified in free motion misses about this on another day.
+  static constexpr double kDefaultEffortOffsetSdNm = 0.02;
   double initial_torque_sd_nm = 1.0;
   double initial_tip_sd_rad = 0.05;
   // Robustness.
@@ -142,23 +168,34 @@ struct FilterEstimate {
   Eigen::Vector2d external_torque_nm{0.0, 0.0};
   Eigen::Vector2d backlash_offset_rad{0.0, 0.0};
   Eigen::Vector2d compliance_scale{1.0, 1.0};
+  Eigen::Vector2d clearance_error_rad{0.0, 0.0};  ///< e: clearance − parameters' δ
+  Eigen::Vector2d effort_offset_nm{0.0, 0.0};     ///< beta
 };
 
-/// The full state of one joint block: x = (q_tip, tau, b, s) and its 4×4
-/// covariance. What the smoother stores and what tests inspect.
+/// States per joint block, and their order.
+constexpr int kFilterJointStates = 6;
+enum FilterStateIndex {
+  kStateTip = 0, kStateTorque, kStateBacklash, kStateScale, kStateClearance, kStateEffortOffset
+};
+using FilterStateVector = Eigen::Matrix<double, kFilterJointStates, 1>;
+using FilterStateMatrix = Eigen::Matrix<double, kFilterJointStates, kFilterJointStates>;
+
+/// The full state of one joint block: x = (q_tip, tau, b, s, e, beta) and its
+/// 6×6 covariance. What the smoother stores and what tests inspect.
 struct FilterJointState {
-  Eigen::Vector4d mean = Eigen::Vector4d::Zero();
-  Eigen::Matrix4d covariance = Eigen::Matrix4d::Zero();
+  FilterStateVector mean = FilterStateVector::Zero();
+  FilterStateMatrix covariance = FilterStateMatrix::Zero();
 };
 
 /// One step's transition of a joint block, kept for the RTS smoother:
 /// predicted mean x_k|k−1, filtered state, and the process model's F (identity
 /// but for b's row) and diagonal Q that produced the prediction.
 struct FilterTransition {
-  Eigen::Vector4d predicted_mean = Eigen::Vector4d::Zero();
+  FilterStateVector predicted_mean = FilterStateVector::Zero();
   double f_backlash_torque = 0.0;   ///< ∂b+/∂tau
   double f_backlash_backlash = 1.0; ///< ∂b+/∂b
-  Eigen::Vector4d process_noise = Eigen::Vector4d::Zero();  ///< diag Q
+  double f_backlash_clearance = 0.0;  ///< ∂b+/∂e
+  FilterStateVector process_noise = FilterStateVector::Zero();  ///< diag Q
   bool predicted = false;           ///< false on the first sample (prior only)
 };
 
@@ -212,6 +249,11 @@ struct MotorMotion {
   /// become a large torque.
   double InertialTorque(const FilterOptions& options) const;
 };
+
+/// The standard deviation of a named parameter ("joint1.backlash_rad") from
+/// the parameters' covariance; NaN when they carry none or not that name.
+double ParameterStandardDeviation(const models::ModelParameters& parameters,
+                                  const std::string& name);
 
 /// The output quantities of a joint-block pair, computed the same way for the
 /// filter and the smoother: corrected angles, covariance, tip correction.

@@ -9,7 +9,7 @@
 //   xˢₖ   = x̂ₖ + Cₖ (xˢₖ₊₁ − x⁻ₖ₊₁)
 //   Pˢₖ   = P̂ₖ + Cₖ (Pˢₖ₊₁ − P⁻ₖ₊₁) Cₖᵀ
 //
-// Memory: about 540 bytes per sample (900,000 samples: 0.5 GB).
+// Memory: about 970 bytes per sample (900,000 samples: 0.9 GB).
 // Not real-time: this is for offline tools (`pliant filter --smooth`).
 
 #include <cstddef>

@@ -41,8 +41,9 @@ namespace pliant::models {
 /// The offset b+ (rad) after one sample at external torque tau (N·m), from the
 /// offset b (rad), for backlash delta (rad) and dead-zone width w (N·m, > 0);
 /// relax (in [0, 1]) is the fraction an unloaded shaft forgets this sample.
-template <typename T>
-T BacklashHysteresisStep(const T& offset_rad, const T& external_torque_nm, double delta_rad,
+/// delta may be a T itself (the filter's clearance with its error state).
+template <typename T, typename Delta = double>
+T BacklashHysteresisStep(const T& offset_rad, const T& external_torque_nm, const Delta& delta_rad,
                          double width_nm, double relax = 0.0) {
   const T saturation = SmoothSaturation(external_torque_nm / width_nm);
   const T hold = saturation * saturation;
