@@ -116,6 +116,16 @@ Command AddFilterCommand(CLI::App& app) {
                   "Motor-side inertia J of joints 1-2, kg·m²: J·θ̈ is taken out of the effort "
                   "while the tip is held (0: off; the simulator's arm has 0.08)")
       ->capture_default_str();
+  // Both joints get the same prior from the command line; NaN keeps "from the
+  // parameters' covariance, else the default" (filter.h).
+  sub->add_option_function<double>(
+         "--clearance-sd", [&f](double sd) { f.backlash_sd_rad.setConstant(sd); },
+         "σ of the clearance δ about the parameters' value, rad (default: the parameters' "
+         "covariance, else 1e-3; 0: known exactly)");
+  sub->add_option_function<double>(
+         "--effort-offset-sd", [&f](double sd) { f.effort_offset_sd_nm.setConstant(sd); },
+         "σ of a constant effort offset the bias torque misses, N·m (default: the parameters' "
+         "covariance, else 0.02; 0: off — better on long held-tip logs, docs/filter.md)");
   sub->add_option("--mismatch-window", f.mismatch_window,
                   "Samples in the windowed NIS test for model mismatch")
       ->capture_default_str();
