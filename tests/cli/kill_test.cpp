@@ -38,20 +38,10 @@ void WriteLongLog(const fs::path& path, std::size_t rows) {
 void RunAndKill(const char* command, const fs::path& dir, std::chrono::milliseconds delay) {
   const std::string params = std::string(PLIANT_SOURCE_DIR) + "/data/paper.json";
   const std::string in = (dir / "in.csv").string(), out = (dir / "out.csv").string();
-  const pid_t child = fork();
+  const pid_t child = testing::StartPliantSilently({command, "--params", params, in, "-o", out});
   ASSERT_GE(child, 0);
-  if (child == 0) {
-    const int null = ::open("/dev/null", O_WRONLY);
-    dup2(null, 1);
-    dup2(null, 2);
-    execl(PLIANT_CLI, PLIANT_CLI, command, "--params", params.c_str(), in.c_str(), "-o",
-          out.c_str(), static_cast<char*>(nullptr));
-    _exit(127);
-  }
   std::this_thread::sleep_for(delay);
-  kill(child, SIGKILL);
-  int status = 0;
-  waitpid(child, &status, 0);
+  testing::KillAndReap(child);
 }
 
 std::set<std::string> Files(const fs::path& dir) {

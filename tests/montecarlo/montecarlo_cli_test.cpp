@@ -87,24 +87,15 @@ TEST(MontecarloCli, AKilledStudyResumesToTheSameSummary) {
 
   const fs::path out = dir / "killed";
   const std::string study_path = study.string(), out_path = out.string();
-  const pid_t child = fork();
+  const pid_t child = testing::StartPliantSilently(
+      {"montecarlo", study_path, "-o", out_path, "--no-plots", "--threads", "1"});
   ASSERT_GE(child, 0);
-  if (child == 0) {
-    const int null = ::open("/dev/null", O_WRONLY);
-    dup2(null, 1);
-    dup2(null, 2);
-    execl(PLIANT_CLI, PLIANT_CLI, "montecarlo", study_path.c_str(), "-o", out_path.c_str(),
-          "--no-plots", "--threads", "1", static_cast<char*>(nullptr));
-    _exit(127);
-  }
   // SIGKILL once some trials are in: no destructor, no flush, maybe a torn row.
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
   while (DataRows(out / "trials.csv") < 8 && std::chrono::steady_clock::now() < deadline) {
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
   }
-  kill(child, SIGKILL);
-  int status = 0;
-  waitpid(child, &status, 0);
+  const int status = testing::KillAndReap(child);
   ASSERT_TRUE(WIFSIGNALED(status)) << "the study finished before the kill";
   ASSERT_FALSE(fs::exists(out / "summary.json"));
   const int done = DataRows(out / "trials.csv");

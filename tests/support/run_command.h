@@ -1,12 +1,16 @@
 #pragma once
 // Runs a command in a shell and captures its exit status, stdout and stderr.
+#include <fcntl.h>
+#include <signal.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace pliant::testing {
 
@@ -33,6 +37,29 @@ inline CommandResult RunCommand(const std::string& command, const std::filesyste
   result.out = ReadText(out);
   result.err = ReadText(err);
   return result;
+}
+
+/// Starts `pliant args…` in the background with its output discarded; returns
+/// its pid (for the kill tests: SIGKILL means no destructor and no cleanup).
+inline pid_t StartPliantSilently(const std::vector<std::string>& args) {
+  const pid_t child = fork();
+  if (child != 0) return child;
+  const int null = ::open("/dev/null", O_WRONLY);
+  dup2(null, 1);
+  dup2(null, 2);
+  std::vector<char*> argv{const_cast<char*>(PLIANT_CLI)};
+  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  execv(PLIANT_CLI, argv.data());
+  _exit(127);
+}
+
+/// SIGKILLs a child and reaps it; returns its wait status.
+inline int KillAndReap(pid_t child) {
+  kill(child, SIGKILL);
+  int status = 0;
+  waitpid(child, &status, 0);
+  return status;
 }
 
 /// A fresh, empty directory for one test.
