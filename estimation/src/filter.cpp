@@ -80,59 +80,6 @@ double ResolveSd(double option, const models::ModelParameters& p, const std::str
 
 }  // namespace
 
-// The fraction of its wall an unloaded shaft forgets in one step: with time
-// constant T while the joint moves (an encoder increment of 3 counts or more
-// per step counts fully, less in proportion), nothing while it rests.
-double ParameterStandardDeviation(const models::ModelParameters& p, const std::string& name) {
-  if (!p.covariance) return std::numeric_limits<double>::quiet_NaN();
-  const auto& names = p.covariance->names;
-  const auto it = std::find(names.begin(), names.end(), name);
-  const auto i = static_cast<Eigen::Index>(it - names.begin());
-  if (it == names.end() || i >= p.covariance->matrix.rows()) {
-    return std::numeric_limits<double>::quiet_NaN();
-  }
-  return std::sqrt(std::max(0.0, p.covariance->matrix(i, i)));
-}
-
-double BacklashRelax(const FilterOptions& o, double dt, double encoder_increment) {
-  const double count = 3.4641016151377544 * o.encoder_noise_rad;  // σ_enc = count/√12
-  const double moving = std::min(1.0, std::abs(encoder_increment) / (3.0 * count));
-  return -std::expm1(-dt / o.backlash_relax_time_s) * moving;
-}
-
-double BacklashProcessVariance(const FilterOptions& o, double dt, bool tip_fixed, double relax,
-                               double saturation, double delta_rad) {
-  const double prior_variance = delta_rad * delta_rad / 3.0;
-  const double pinned = saturation * saturation;  // g: how firmly the load holds the shaft
-  // Unloaded, b diffuses: held tip, at σ_b (the arm moves it across the
-  // clearance, the encoders follow); free tip, back to the uniform prior as it
-  // forgets its wall (the stationary variance of b+ = (1 − r)·b + w is δ²/3).
-  const double unloaded = tip_fixed ? o.backlash_rate_rad * o.backlash_rate_rad * dt
-                                    : relax * (2.0 - relax) * prior_variance;
-  // Partly loaded, held tip: the step pulls b by g toward δ·S(tau/w), a smooth
-  // stand-in for a shaft that meets its wall at some load inside w (the
-  // simulator's at a few hundredths of a N·m). Where is not known, so the
-  // pull is uncertain in proportion to g·(1 − g): zero at no load (no pull)
-  // and on the wall (no doubt). Without it the pull, taken as certain, put b
-  // short of the wall and dragged s down (docs/validation.md, Part 4).
-  const double transit =
-      tip_fixed ? o.backlash_transit_noise * pinned * (1.0 - pinned) * prior_variance : 0.0;
-  return (1.0 - pinned) * unloaded + transit +
-         o.backlash_pinned_rate_rad * o.backlash_pinned_rate_rad * dt;
-}
-
-void MotorMotion::Advance(const FilterOptions& o, double dt, double encoder_increment) {
-  const double r = -std::expm1(-dt / o.acceleration_filter_time_s);
-  const double v = velocity_rad_s + r * (encoder_increment / dt - velocity_rad_s);
-  acceleration_rad_s2 += r * ((v - velocity_rad_s) / dt - acceleration_rad_s2);
-  velocity_rad_s = v;
-}
-
-double MotorMotion::InertialTorque(const FilterOptions& o) const {
-  return std::clamp(o.motor_inertia_kg_m2 * acceleration_rad_s2, -o.effort_limit_nm,
-                    o.effort_limit_nm);
-}
-
 struct ComplianceFilter::Impl {
   Impl(const models::ModelParameters& p, const FilterOptions& o);
 
