@@ -88,6 +88,7 @@ struct ComplianceFilter::Impl {
 
   void Initialise(const FilterSample& sample, double depth);
   void Predict(int j, double dt, bool tip_fixed, double encoder_increment);
+  void Release(int j, double dt, double encoder_increment);
   void EncoderModel(double depth, Eigen::Vector2d* predicted, Vector* h) const;
   void ScalarUpdate(int j, Channel channel, const Vector& h, double innovation,
                     double variance, StepTally* tally, bool implausible = false);
@@ -256,9 +257,42 @@ void ComplianceFilter::Impl::Predict(int j, double dt, bool tip_fixed, double en
   P.diagonal() += q;
 
   t.predicted_mean = s.mean;
+  t.f_torque_torque = 1.0;
   t.f_backlash_torque = fbt;
   t.f_backlash_backlash = fbb;
   t.f_backlash_clearance = fbe;
+  t.process_noise = q;
+  t.predicted = true;
+}
+
+// Released and held again elsewhere, after a transit the log does not show
+// (hold means): the load came off and the arm moved with the tip free, so the
+// shaft forgets its wall as a free tip's does (BacklashRelax: by how far the
+// joint moved; a joint that did not move keeps it). The tip and the load start
+// again from their priors (F's row for tau is zero); the instrument's states
+// (s, e, beta) carry over with what was learned about them.
+void ComplianceFilter::Impl::Release(int j, double dt, double encoder_increment) {
+  FilterJointState& s = joint[j];
+  FilterTransition& t = transition[j];
+  const Matrix prior = PriorCovariance(options, delta[j], uncertainty[j]);
+  const double keep = 1.0 - BacklashRelax(options, dt, encoder_increment);
+  s.mean[kTip] += encoder_increment;
+  s.mean[kTorque] = 0.0;
+  s.mean[kBacklash] *= keep;
+  Matrix& P = s.covariance;
+  P.row(kTorque).setZero();
+  P.col(kTorque).setZero();
+  P.row(kBacklash) *= keep;
+  P.col(kBacklash) *= keep;
+  Vector q = Vector::Zero();
+  q[kTip] = prior(kTip, kTip);
+  q[kTorque] = prior(kTorque, kTorque);
+  q[kBacklash] = (1.0 - keep * keep) * prior(kBacklash, kBacklash);
+  P.diagonal() += q;
+  t.predicted_mean = s.mean;
+  t.f_torque_torque = 0.0;
+  t.f_backlash_torque = t.f_backlash_clearance = 0.0;
+  t.f_backlash_backlash = keep;
   t.process_noise = q;
   t.predicted = true;
 }
@@ -400,15 +434,10 @@ FilterEstimate ComplianceFilter::Impl::Step(const FilterSample& sample) {
       implausible_jump[j] = std::abs(increment) > kMaxJointSpeed * dt;
       if (!(std::abs(increment) <= kMaxJointSpeed * dt)) increment = 0.0;
       motion[j].Advance(options, dt, increment);
-      Predict(j, dt, sample.tip_fixed, increment);
       if (released) {
-        // Held again elsewhere, after a transit the log does not show: the tip
-        // and the load start again from their priors.
-        const Matrix prior = PriorCovariance(options, delta[j], uncertainty[j]);
-        joint[j].covariance(kTip, kTip) += prior(kTip, kTip);
-        joint[j].covariance(kTorque, kTorque) += prior(kTorque, kTorque);
-        transition[j].process_noise[kTip] += prior(kTip, kTip);
-        transition[j].process_noise[kTorque] += prior(kTorque, kTorque);
+        Release(j, dt, increment);
+      } else {
+        Predict(j, dt, sample.tip_fixed, increment);
       }
     }
   }

@@ -10,13 +10,14 @@ using Matrix = FilterStateMatrix;
 
 Matrix TransitionMatrix(const FilterTransition& t) {
   Matrix f = Matrix::Identity();
+  f(kTorque, kTorque) = t.f_torque_torque;
   f(kBacklash, kTorque) = t.f_backlash_torque;
   f(kBacklash, kBacklash) = t.f_backlash_backlash;
   f(kBacklash, kClearance) = t.f_backlash_clearance;
   return f;
 }
 
-// F·P·Fᵀ + Q with F = I but for b's row (as the filter predicts).
+// F·P·Fᵀ + Q with F = I but for b's row and tau's (as the filter predicts).
 Matrix Predicted(const Matrix& p, const FilterTransition& t) {
   const Matrix f = TransitionMatrix(t);
   Matrix out = f * p * f.transpose();

@@ -43,7 +43,10 @@ class ClampedBeam : public Protocol {
       return true;
     }
     const double step_rad = p_.tip_step_m / runs_[run_].depth_m;
-    const bool past_limit = std::abs(last->effort_nm[j]) > p_.effort_limit_nm;
+    // The load this leg builds, in its own direction: just after a reversal the
+    // effort still exceeds the limit the other way, and |effort| would end the
+    // new leg after one step (the sweep then never came back past the start).
+    const bool past_limit = direction_ * last->effort_nm[j] > p_.effort_limit_nm;
     if (leg_ < 2 && (past_limit || steps_ >= p_.max_steps_per_leg)) {
       ++leg_;
       direction_ = -direction_;

@@ -27,6 +27,10 @@
 //            (BacklashProcessVariance)
 //   s+     = s + noise σ_ṡ²·dt
 //   e+     = e;  beta+ = beta + noise σ_β̇²·dt
+//   Two tip-fixed samples whose depths differ by more than 0.2 mm: the tip was
+//   released and held again elsewhere (a log of hold means skips the transit):
+//   q_tip and tau restart from their priors, b relaxes as a free tip's over
+//   the encoder increment, s, e and beta carry over.
 // Measurements:
 //   q_enc_j  = q_tip_j + b_j + s_j·K_j(L)·tau_j   (ComplianceEffect)
 //            variance σ_enc² + (ε·K_j(L)·tau_j)², ε = deflection_model_error
@@ -189,9 +193,11 @@ struct FilterJointState {
 
 /// One step's transition of a joint block, kept for the RTS smoother:
 /// predicted mean x_k|k−1, filtered state, and the process model's F (identity
-/// but for b's row) and diagonal Q that produced the prediction.
+/// but for b's row, and tau's on a release) and diagonal Q that produced the
+/// prediction.
 struct FilterTransition {
   FilterStateVector predicted_mean = FilterStateVector::Zero();
+  double f_torque_torque = 1.0;     ///< ∂tau+/∂tau: 0 when a release restarts the load
   double f_backlash_torque = 0.0;   ///< ∂b+/∂tau
   double f_backlash_backlash = 1.0; ///< ∂b+/∂b
   double f_backlash_clearance = 0.0;  ///< ∂b+/∂e
