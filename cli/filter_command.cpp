@@ -124,8 +124,8 @@ Command AddFilterCommand(CLI::App& app) {
          "covariance, else 1e-3; 0: known exactly)");
   sub->add_option_function<double>(
          "--effort-offset-sd", [&f](double sd) { f.effort_offset_sd_nm.setConstant(sd); },
-         "σ of a constant effort offset the bias torque misses, N·m (default: the parameters' "
-         "covariance, else 0.02; 0: off — better on long held-tip logs, docs/filter.md)");
+         "σ of a constant effort offset the bias torque misses, N·m (default 0: off, "
+         "better on held-tip logs, docs/filter.md; nan: the parameters' covariance, else 0.02)");
   sub->add_option("--mismatch-window", f.mismatch_window,
                   "Samples in the windowed NIS test for model mismatch")
       ->capture_default_str();

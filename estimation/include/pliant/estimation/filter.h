@@ -107,10 +107,13 @@ struct FilterOptions {
   /// kDefaultBacklashSdRad. 0: the clearance is known exactly.
   Eigen::Vector2d backlash_sd_rad{kFromParameters, kFromParameters};
   /// σ_β per joint (N·m): a constant offset the bias torque tau0 may miss.
-  /// NaN (the default): the parameters' covariance of
-  /// "jointN.bias_torque.coefficients[0]" (the Fourier mean) when they carry
-  /// one, else kDefaultEffortOffsetSdNm. 0: the bias torque is exact.
-  Eigen::Vector2d effort_offset_sd_nm{kFromParameters, kFromParameters};
+  /// 0 (the default): off, the bias torque is taken as exact. NaN: the
+  /// parameters' covariance of "jointN.bias_torque.coefficients[0]" (the
+  /// Fourier mean) when they carry one, else kDefaultEffortOffsetSdNm.
+  /// Off by default because it has not earned its place on held-tip logs: a
+  /// held tip cannot tell β from the load, and the state made the divot and
+  /// clamped-beam tips worse and their corrected angles jumpy (docs/filter.md).
+  Eigen::Vector2d effort_offset_sd_nm{0.0, 0.0};
   double effort_offset_rate_nm = 0.0;     ///< σ_β̇, N·m/√s (0: a constant offset)
   static constexpr double kFromParameters = std::numeric_limits<double>::quiet_NaN();
   /// Without a covariance: the clearance of one instrument vs another of the
