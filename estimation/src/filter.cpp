@@ -87,7 +87,7 @@ struct ComplianceFilter::Impl {
   void Reset();
 
   void Initialise(const FilterSample& sample, double depth);
-  void Predict(int j, double dt, bool tip_fixed, double encoder_increment);
+  void Predict(int j, double dt, bool tip_fixed, bool seated, double encoder_increment);
   void Release(int j, double dt, double encoder_increment);
   void EncoderModel(double depth, Eigen::Vector2d* predicted, Vector* h) const;
   void ScalarUpdate(int j, Channel channel, const Vector& h, double innovation,
@@ -210,10 +210,13 @@ void ComplianceFilter::Impl::Initialise(const FilterSample& sample, double depth
 
 // F = I but for b's row (∂b+/∂tau, ∂b+/∂b, ∂b+/∂e from the hysteresis step's Jet), so
 // F·P·Fᵀ touches only b's row and column.
-void ComplianceFilter::Impl::Predict(int j, double dt, bool tip_fixed, double encoder_increment) {
+void ComplianceFilter::Impl::Predict(int j, double dt, bool tip_fixed, bool seated,
+                                     double encoder_increment) {
   FilterJointState& s = joint[j];
   FilterTransition& t = transition[j];
   const auto& o = options;
+  t.seating_bound_weight = seated ? o.seating_bound_weight : 1.0;
+  SeatingBound(&s.covariance, t.seating_bound_weight);
   // The fraction of its wall an unloaded shaft forgets as the arm moves by
   // the encoder increment: nothing holds an unloaded shaft on a wall, but it
   // only leaves it when the arm moves (a joint at rest keeps its offset).
@@ -294,6 +297,7 @@ void ComplianceFilter::Impl::Release(int j, double dt, double encoder_increment)
   t.f_backlash_torque = t.f_backlash_clearance = 0.0;
   t.f_backlash_backlash = keep;
   t.process_noise = q;
+  t.seating_bound_weight = 1.0;
   t.predicted = true;
 }
 
@@ -437,7 +441,7 @@ FilterEstimate ComplianceFilter::Impl::Step(const FilterSample& sample) {
       if (released) {
         Release(j, dt, increment);
       } else {
-        Predict(j, dt, sample.tip_fixed, increment);
+        Predict(j, dt, sample.tip_fixed, sample.tip_fixed && !last_tip_fixed, increment);
       }
     }
   }

@@ -97,6 +97,10 @@ bool FilterOptions::IsValid(std::string* error) const {
                              "the model explains passes, e.g. 0.9999 or 0.99");
     }
   }
+  if (!(seating_bound_weight > 0.0 && seating_bound_weight <= 1.0)) {
+    return Fail(error, "FilterOptions::seating_bound_weight must lie in (0, 1] — e.g. 0.9, or 1 "
+                       "to keep the tip–load correlation when the tip is seated");
+  }
   if (reacquire_after < 1 || reacquire_after > 100000) {
     return Fail(error, "FilterOptions::reacquire_after must be in [1, 100000] samples — e.g. 25 "
                        "(17 ms at 1.5 kHz)");

@@ -51,6 +51,16 @@ double BacklashProcessVariance(const FilterOptions& o, double dt, bool tip_fixed
          o.backlash_pinned_rate_rad * o.backlash_pinned_rate_rad * dt;
 }
 
+void SeatingBound(FilterStateMatrix* covariance, double weight) {
+  if (!(weight < 1.0)) return;
+  FilterStateMatrix& p = *covariance;
+  const double load = p(kStateTorque, kStateTorque) / (1.0 - weight);
+  p.row(kStateTorque).setZero();
+  p.col(kStateTorque).setZero();
+  p /= weight;
+  p(kStateTorque, kStateTorque) = load;
+}
+
 void MotorMotion::Advance(const FilterOptions& o, double dt, double encoder_increment) {
   const double r = -std::expm1(-dt / o.acceleration_filter_time_s);
   const double v = velocity_rad_s + r * (encoder_increment / dt - velocity_rad_s);

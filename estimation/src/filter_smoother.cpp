@@ -17,10 +17,14 @@ Matrix TransitionMatrix(const FilterTransition& t) {
   return f;
 }
 
-// F·P·Fᵀ + Q with F = I but for b's row and tau's (as the filter predicts).
+// F·B(P)·Fᵀ + Q with F = I but for b's row and tau's, B the seating bound
+// (as the filter predicts). B(P) − P acts as process noise added at k, so the
+// smoother's cross-covariance stays P·Fᵀ.
 Matrix Predicted(const Matrix& p, const FilterTransition& t) {
   const Matrix f = TransitionMatrix(t);
-  Matrix out = f * p * f.transpose();
+  Matrix bounded = p;
+  SeatingBound(&bounded, t.seating_bound_weight);
+  Matrix out = f * bounded * f.transpose();
   out.diagonal() += t.process_noise;
   return out;
 }

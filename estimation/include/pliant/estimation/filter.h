@@ -31,6 +31,10 @@
 //   released and held again elsewhere (a log of hold means skips the transit):
 //   q_tip and tau restart from their priors, b relaxes as a free tip's over
 //   the encoder increment, s, e and beta carry over.
+//   The first tip-fixed sample after a free one (the tip is seated): before
+//   predicting, P is replaced by the bound blockdiag(P_rest/ω, P_ττ/(1 − ω))
+//   ≥ P (SeatingBound), which drops the tip–load correlation the free tip
+//   built (q_tip = q_enc − b − s·K·tau) at a known cost in variance.
 // Measurements:
 //   q_enc_j  = q_tip_j + b_j + s_j·K_j(L)·tau_j   (ComplianceEffect)
 //            variance σ_enc² + (ε·K_j(L)·tau_j)², ε = deflection_model_error
@@ -125,6 +129,13 @@ struct FilterOptions {
   static constexpr double kDefaultEffortOffsetSdNm = 0.02;
   double initial_torque_sd_nm = 1.0;
   double initial_tip_sd_rad = 0.05;
+  /// ω in (0, 1] of the seating bound (SeatingBound): when the tip is seated,
+  /// every state but the load keeps its covariance × 1/ω and the load's is
+  /// × 1/(1 − ω), uncorrelated. Why: a free tip is read as q_enc − b − s·K·tau,
+  /// so its estimate carries the load's noise (K·σ_τ̂ ≈ 50 counts); held,
+  /// each effort sample would then move the held tip by up to 27 counts while
+  /// the filter unlearns that tie. 1: off (the tie is kept).
+  double seating_bound_weight = 0.9;
   // Robustness.
   double gate_probability = 0.9999;  ///< χ²(1) gate on each scalar innovation
   int reacquire_after = 25;          ///< consecutive rejections before re-acquiring
@@ -205,6 +216,8 @@ struct FilterTransition {
   double f_backlash_backlash = 1.0; ///< ∂b+/∂b
   double f_backlash_clearance = 0.0;  ///< ∂b+/∂e
   FilterStateVector process_noise = FilterStateVector::Zero();  ///< diag Q
+  /// < 1: the tip was seated and SeatingBound(P, this) came before F·P·Fᵀ + Q.
+  double seating_bound_weight = 1.0;
   bool predicted = false;           ///< false on the first sample (prior only)
 };
 
@@ -245,6 +258,14 @@ double BacklashRelax(const FilterOptions& options, double dt, double encoder_inc
 /// and clearance δ: unloaded diffusion, the transit's uncertain pull, and σ_pinned.
 double BacklashProcessVariance(const FilterOptions& options, double dt, bool tip_fixed,
                                double relax, double saturation, double delta_rad);
+
+/// A covariance bound for the moment a free tip is seated: the load's block
+/// (row and column kStateTorque) is made uncorrelated with the rest, the rest
+/// scaled by 1/ω and the load's variance by 1/(1 − ω). The result minus P is
+/// positive semi-definite for any ω in (0, 1) (the two-block covariance
+/// intersection bound), so the filter stays conservative; the mean is kept.
+/// ω ≥ 1 leaves P as it is.
+void SeatingBound(FilterStateMatrix* covariance, double weight);
 
 /// The motor's velocity and acceleration from encoder increments: the
 /// increment over dt low-passed to a velocity, its difference low-passed again
