@@ -91,7 +91,8 @@ struct ComplianceFilter::Impl {
   void Release(int j, double dt, double encoder_increment);
   void EncoderModel(double depth, Eigen::Vector2d* predicted, Vector* h) const;
   void ScalarUpdate(int j, Channel channel, const Vector& h, double innovation,
-                    double variance, StepTally* tally, bool implausible = false);
+                    double variance, StepTally* tally, bool implausible = false,
+                    bool consider_instrument = false);
   void Repair(int j, const FilterSample& sample, StepTally* tally);
   void UpdateWindow(StepTally* tally);
 
@@ -326,7 +327,7 @@ void ComplianceFilter::Impl::EncoderModel(double depth_m, Eigen::Vector2d* predi
 // world has changed (a slip, a new contact) and the filter must follow it.
 void ComplianceFilter::Impl::ScalarUpdate(int j, Channel channel, const Vector& h,
                                           double innovation, double variance, StepTally* tally,
-                                          bool implausible) {
+                                          bool implausible, bool consider_instrument) {
   FilterJointState& s = joint[j];
   Matrix& P = s.covariance;
   Vector u = P * h;
@@ -361,7 +362,14 @@ void ComplianceFilter::Impl::ScalarUpdate(int j, Channel channel, const Vector& 
     tally->window_dof += 1;
   }
   rejected = 0;
-  const Vector k = u / S;
+  Vector k = u / S;
+  // A free tip's encoder and effort say where the tip is and what loads it,
+  // not what the instrument is: s, e and beta are "consider" states there
+  // (Schmidt–Kalman: their gain is zero, their doubt still flows into P
+  // through the Joseph form below). With a gain they drifted over a long
+  // free log on tiny correlations with the tip (s 1 → 0.82 over 2 M samples
+  // of the clamped sweep; validation.md). A reference still teaches them.
+  if (consider_instrument) k[kScale] = k[kClearance] = k[kOffset] = 0.0;
   // Joseph form for one scalar, P+ = (I − k hᵀ) P (I − k hᵀ)ᵀ + k r kᵀ, which
   // for any gain k (not only the optimal one) expands exactly to
   //   P+ = P − k uᵀ − u kᵀ + S k kᵀ = P + k vᵀ + v kᵀ,   v = S k / 2 − u.
@@ -473,7 +481,8 @@ FilterEstimate ComplianceFilter::Impl::Step(const FilterSample& sample) {
     const double inertial = sample.tip_fixed ? motion[j].InertialTorque(options) : 0.0;
     ScalarUpdate(j, kEffortChannel, Vector::Unit(kTorque) + Vector::Unit(kOffset),
                  effort - tau0 - inertial - joint[j].mean[kTorque] - joint[j].mean[kOffset],
-                 options.effort_noise_nm * options.effort_noise_nm, &tally);
+                 options.effort_noise_nm * options.effort_noise_nm, &tally, false,
+                 !sample.tip_fixed);
   }
   // Encoders, linearised at the state the efforts just updated.
   Eigen::Vector2d predicted;
@@ -487,8 +496,7 @@ FilterEstimate ComplianceFilter::Impl::Step(const FilterSample& sample) {
     const double deflection = options.deflection_model_error * h[j][kScale];
     ScalarUpdate(j, kEncoderChannel, h[j], sample.encoder_rad[j] - predicted[j],
                  options.encoder_noise_rad * options.encoder_noise_rad + deflection * deflection,
-                 &tally,
-                 implausible_jump[j] && !sample.tip_fixed);
+                 &tally, implausible_jump[j] && !sample.tip_fixed, !sample.tip_fixed);
   }
   for (int j = 0; j < 2; ++j) {
     const double ref = sample.reference_rad[j];
