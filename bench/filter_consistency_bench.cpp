@@ -46,8 +46,8 @@
 #include <vector>
 
 #include <Eigen/Dense>
-#include <boost/math/distributions/chi_squared.hpp>
 
+#include "pliant/estimation/consistency.h"
 #include "pliant/estimation/filter.h"
 #include "pliant/estimation/filter_log.h"
 #include "pliant/experiments/scenario.h"
@@ -60,38 +60,15 @@ namespace {
 
 using namespace pliant;
 
-struct Tally {
-  double nees_sum = 0.0;
-  long nees_n = 0;
-  long covered[2] = {0, 0};
-  long n = 0;
-  double max_nees = 0.0;
-  void Add(const Eigen::Vector2d& e, const Eigen::Matrix2d& p, bool coverage = true) {
-    const double nees = e.dot(p.ldlt().solve(e));
-    nees_sum += nees;
-    max_nees = std::max(max_nees, nees);
-    ++nees_n;
-    if (!coverage) return;
-    ++n;
-    for (int j = 0; j < 2; ++j) covered[j] += std::abs(e[j]) <= 1.959963985 * std::sqrt(p(j, j));
-  }
-  double Mean() const { return nees_n ? nees_sum / nees_n : 0.0; }
-};
-
-std::pair<double, double> Band(long samples) {
-  const boost::math::chi_squared chi(2.0 * samples);
-  return {boost::math::quantile(chi, 0.025) / samples, boost::math::quantile(chi, 0.975) / samples};
-}
-
-void Print(const char* name, const Tally& t, bool band) {
-  std::printf("  %-34s NEES mean %6.3f over %6ld", name, t.Mean(), t.nees_n);
+void Print(const char* name, const estimation::ConsistencyTally& t, bool band) {
+  std::printf("  %-34s NEES mean %6.3f over %6ld", name, t.MeanNees(), t.nees_count);
   if (band) {
-    const auto [lo, hi] = Band(t.nees_n);
-    std::printf(" band [%.3f, %.3f] %s", lo, hi, t.Mean() >= lo && t.Mean() <= hi ? "in" : "OUT");
+    const auto b = estimation::MeanNeesBand95(t.nees_count);
+    std::printf(" band [%.3f, %.3f] %s", b.lower, b.upper, b.Contains(t.MeanNees()) ? "in" : "OUT");
   }
-  if (t.n) {
-    std::printf("   coverage j1 %5.1f %%  j2 %5.1f %%", 100.0 * t.covered[0] / t.n,
-                100.0 * t.covered[1] / t.n);
+  if (t.coverage_count) {
+    std::printf("   coverage j1 %5.1f %%  j2 %5.1f %%", 100.0 * t.CoverageFraction(0),
+                100.0 * t.CoverageFraction(1));
   }
   std::printf("   max %.1f\n", t.max_nees);
 }
@@ -181,7 +158,7 @@ int main(int argc, char** argv) {
     const double depths[] = {0.10, 0.15, 0.20};
     const double torques[] = {0.5, 1.0};
     const double speeds[] = {0.02, 0.05};
-    Tally one_per_run, all, held, free_tip;
+    estimation::ConsistencyTally one_per_run, all, held, free_tip;
     std::mt19937_64 pick(7);
     long rows_total = 0;
     for (int run = 0; run < runs; ++run) {
@@ -219,7 +196,7 @@ int main(int argc, char** argv) {
       const std::size_t rows = log.Rows(), cols = log.Columns();
       rows_total += long(rows);
       const std::size_t chosen = std::uniform_int_distribution<std::size_t>(0, rows - 1)(pick);
-      Tally run_held;
+      estimation::ConsistencyTally run_held;
       for (std::size_t r = 0; r < rows; ++r) {
         const double* v = &log.values[r * cols];
         const auto s = estimation::SampleFromRow(c, v);
@@ -255,8 +232,8 @@ int main(int argc, char** argv) {
       if (per_run) {  // which runs carry the NEES (tuning)
         std::printf("run %3d depth %.2f dir %3d peak %.1f speed %.2f: held NEES %7.2f max %7.1f  "
                     "coverage %5.1f %% %5.1f %%\n", run, depth, direction, torque, speed,
-                    run_held.Mean(), run_held.max_nees, 100.0 * run_held.covered[0] / run_held.n,
-                    100.0 * run_held.covered[1] / run_held.n);
+                    run_held.MeanNees(), run_held.max_nees, 100.0 * run_held.CoverageFraction(0),
+                    100.0 * run_held.CoverageFraction(1));
       }
     }
     std::printf("filter consistency on the CVODE simulator: %d divot runs (seeds %d..%d, hidden "

@@ -9,6 +9,7 @@
 #include <boost/math/distributions/chi_squared.hpp>
 #include <boost/math/statistics/bivariate_statistics.hpp>
 
+#include "pliant/estimation/consistency.h"
 #include "pliant/experiments/montecarlo.h"
 #include "pliant/experiments/plot.h"
 
@@ -138,10 +139,8 @@ json SummariseStudy(const Study& study, const std::vector<TrialResult>& rows) {
   summary["methods"] = methods;
 
   // One NEES per trial: independent χ²(2) values when the covariance is right.
-  const boost::math::chi_squared chi_2n(2.0 * n), chi_2(2.0);
-  const double band[2] = {boost::math::quantile(chi_2n, 0.025) / n,
-                          boost::math::quantile(chi_2n, 0.975) / n};
-  const double nees95 = boost::math::quantile(chi_2, 0.95);
+  const auto band = estimation::MeanNeesBand95(static_cast<long>(rows.size()));
+  const double nees95 = boost::math::quantile(boost::math::chi_squared(2.0), 0.95);
   json honesty = json::object();
   for (int e = 0; e < 2; ++e) {
     double sum = 0.0, covered = 0.0, fraction = 0.0, inside = 0.0;
@@ -154,8 +153,8 @@ json SummariseStudy(const Study& study, const std::vector<TrialResult>& rows) {
     const double mean = sum / n;
     honesty[e == 0 ? "filter" : "smoother"] = {
         {"nees_mean", mean},
-        {"nees_band_95", {band[0], band[1]}},
-        {"nees_in_band", mean >= band[0] && mean <= band[1]},
+        {"nees_band_95", {band.lower, band.upper}},
+        {"nees_in_band", band.Contains(mean)},
         {"nees_within_chi2_95", inside / n},
         {"coverage_95_picked_sample", covered / (2.0 * n)},
         {"coverage_95_held_samples", fraction / n}};

@@ -12,6 +12,7 @@
 #include <boost/math/distributions/uniform.hpp>
 
 #include "pliant/estimation/compliance_correction.h"
+#include "pliant/estimation/consistency.h"
 #include "pliant/estimation/filter_log.h"
 #include "pliant/estimation/filter_smoother.h"
 #include "pliant/estimation/identification.h"
@@ -22,8 +23,7 @@
 namespace pliant::experiments {
 namespace {
 
-constexpr double kZ95 = 1.959963984540054;  // two-sided 95 % normal quantile
-constexpr int kCoverageEvery = 15;          // 0.01 s at 1.5 kHz
+constexpr int kCoverageEvery = 15;  // 0.01 s at 1.5 kHz
 
 // Scales a compliance law's K(L) by `scale` whatever its form.
 void ScaleCompliance(models::ComplianceLaw& law, double scale) {
@@ -114,24 +114,6 @@ void InstrumentPrior(const Study& study, const models::ModelParameters& paramete
   }
 }
 
-struct Honesty {
-  double nees = 0.0;
-  int covered = 0;
-  long inside = 0, scored = 0;
-  void Score(const Eigen::Vector2d& error, const Eigen::Matrix2d& covariance, bool picked,
-             bool every) {
-    if (picked) {
-      nees = error.dot(covariance.ldlt().solve(error));
-      for (int j = 0; j < 2; ++j) covered += std::abs(error[j]) <= kZ95 * std::sqrt(covariance(j, j));
-    }
-    if (!every) return;
-    for (int j = 0; j < 2; ++j) {
-      inside += std::abs(error[j]) <= kZ95 * std::sqrt(covariance(j, j));
-      ++scored;
-    }
-  }
-};
-
 }  // namespace
 
 const char* CorrectionMethodName(int method) {
@@ -215,8 +197,15 @@ TrialResult RunTrial(const Study& study, int trial) {
   const long picked = std::min<long>(out.held_samples - 1, long(d.nees_pick * out.held_samples));
 
   estimation::TipErrorStatistics error[kCorrectionMethods];
-  Honesty honesty[2];
+  // Per estimator (0 filter, 1 smoother): the picked held sample, and every
+  // kCoverageEvery-th held sample.
+  estimation::ConsistencyTally picked_sample[2], every_kth[2];
   long held = 0;
+  const auto score = [&](int estimator, const Eigen::Vector2d& error_rad,
+                         const Eigen::Matrix2d& covariance_rad2) {
+    if (held == picked) picked_sample[estimator].Add(error_rad, covariance_rad2);
+    if (held % kCoverageEvery == 0) every_kth[estimator].Add(error_rad, covariance_rad2);
+  };
   for (std::size_t r = 0; r < rows; ++r) {
     const double* v = &log.values[r * cols];
     const auto sample = estimation::SampleFromRow(c, v);
@@ -229,8 +218,7 @@ TrialResult RunTrial(const Study& study, int trial) {
     error[kEquation2].Add(with_angles(equation2.Correct(q, effort).corrected_rad), truth);
     error[kDeadZone].Add(with_angles(deadzone.Correct(q, effort).corrected_rad), truth);
     error[kFilter].Add(with_angles(filtered.corrected_rad), truth);
-    honesty[0].Score(filtered.corrected_rad - truth, filtered.covariance_rad2, held == picked,
-                     held % kCoverageEvery == 0);
+    score(0, filtered.corrected_rad - truth, filtered.covariance_rad2);
     ++held;
   }
   smoother.Smooth();
@@ -242,15 +230,14 @@ TrialResult RunTrial(const Study& study, int trial) {
     const auto smoothed = smoother.Estimate(r);
     error[kSmoother].Add(Eigen::Vector3d(smoothed.corrected_rad[0], smoothed.corrected_rad[1], v[c.q3]),
                          truth);
-    honesty[1].Score(smoothed.corrected_rad - truth, smoothed.covariance_rad2, held == picked,
-                     held % kCoverageEvery == 0);
+    score(1, smoothed.corrected_rad - truth, smoothed.covariance_rad2);
     ++held;
   }
   for (int m = 0; m < kCorrectionMethods; ++m) out.tip_error_mm[m] = error[m].RmsMm();
   for (int e = 0; e < 2; ++e) {
-    out.nees[e] = honesty[e].nees;
-    out.covered[e] = honesty[e].covered;
-    out.coverage_fraction[e] = double(honesty[e].inside) / double(honesty[e].scored);
+    out.nees[e] = picked_sample[e].MeanNees();  // one sample: its NEES
+    out.covered[e] = int(picked_sample[e].covered[0] + picked_sample[e].covered[1]);
+    out.coverage_fraction[e] = every_kth[e].PooledCoverageFraction();
   }
   return out;
 }

@@ -39,7 +39,9 @@ TEST(ComplianceFilter, AReleaseBetweenHoldsForgetsTheWallTheShaftSatOn) {
   // sits on its + wall, b = +δ, and the tip is pinned.
   FilterEstimate e;
   double t = 0.0;
-  for (double load : {0.0, 0.5, 1.0, 1.0, 0.6, 0.3}) e = filter.Step(Hold(p, t += 0.9, 0.15, 0.0, delta, load));
+  for (double load : {0.0, 0.5, 1.0, 1.0, 0.6, 0.3}) {
+    e = filter.Step(Hold(p, t += 0.9, 0.15, 0.0, delta, load));
+  }
   ASSERT_NEAR(e.backlash_offset_rad[0], delta, 0.05 * delta);
   const double held_sd = std::sqrt(e.covariance_rad2(0, 0));
   ASSERT_LT(held_sd, 0.25 * delta);
@@ -57,7 +59,9 @@ TEST(ComplianceFilter, AReleaseBetweenHoldsForgetsTheWallTheShaftSatOn) {
   // Held without a release (same depth), the wall is remembered: b stays +δ.
   ComplianceFilter held(p, o);
   t = 0.0;
-  for (double load : {0.0, 0.5, 1.0, 1.0, 0.6, 0.3}) held.Step(Hold(p, t += 0.9, 0.15, 0.0, delta, load));
+  for (double load : {0.0, 0.5, 1.0, 1.0, 0.6, 0.3}) {
+    held.Step(Hold(p, t += 0.9, 0.15, 0.0, delta, load));
+  }
   e = held.Step(Hold(p, t += 0.9, 0.15, 0.0, delta, 0.0));
   EXPECT_NEAR(e.backlash_offset_rad[0], delta, 0.05 * delta);
 }
