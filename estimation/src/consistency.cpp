@@ -6,8 +6,14 @@
 
 #include <Eigen/Cholesky>
 #include <boost/math/distributions/chi_squared.hpp>
+#include <boost/math/distributions/normal.hpp>
 
 namespace pliant::estimation {
+
+double NormalQuantile975() {
+  static const double z = boost::math::quantile(boost::math::normal(), 0.975);
+  return z;
+}
 
 double Nees(const Eigen::Vector2d& error_rad, const Eigen::Matrix2d& covariance_rad2) {
   return error_rad.dot(covariance_rad2.ldlt().solve(error_rad));
@@ -21,8 +27,9 @@ void ConsistencyTally::Add(const Eigen::Vector2d& error_rad,
   ++nees_count;
   if (!score_coverage) return;
   ++coverage_count;
+  const double z = NormalQuantile975();
   for (int j = 0; j < 2; ++j) {
-    covered[j] += std::abs(error_rad[j]) <= kNormalQuantile975 * std::sqrt(covariance_rad2(j, j));
+    covered[j] += std::abs(error_rad[j]) <= z * std::sqrt(covariance_rad2(j, j));
   }
 }
 

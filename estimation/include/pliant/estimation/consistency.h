@@ -9,8 +9,8 @@
 
 namespace pliant::estimation {
 
-/// Two-sided 95 % normal quantile z(0.975) (Boost.Math's, checked in a test).
-inline constexpr double kNormalQuantile975 = 1.959963984540054;
+/// Two-sided 95 % normal quantile z(0.975), from Boost.Math (computed once).
+double NormalQuantile975();
 
 /// Normalised estimation error squared e·P⁻¹·e of a 2-D error and its covariance.
 double Nees(const Eigen::Vector2d& error_rad, const Eigen::Matrix2d& covariance_rad2);
