@@ -41,6 +41,11 @@
 //   tau_meas_j − tau0_j(q_enc, L) − J·θ̈_j = tau_j + beta_j  (bias torque; J·θ̈ with the
 //            tip held, MotorMotion)                            σ_effort
 //   q_ref_j  = q_tip_j                             (when the log has it) σ_ref
+//   With the tip free, s, e and beta are consider states of the encoder and
+//   effort updates (Schmidt–Kalman: zero gain, their doubt still carried into
+//   P): a free tip is wherever the encoder puts it, so those updates hold no
+//   information about the instrument; the prior of compliance and backlash is
+//   kept, as issue 5 asks. A reference (q_ref) still teaches them.
 // Jacobians come from ceres::Jet. The joints share no state and no
 // measurement while no coupling effect is on, so the filter runs two blocks
 // of 6 states with sequential scalar updates (Joseph form); q12_cov is then
