@@ -7,7 +7,9 @@
 //                      dense F P Fᵀ + Q, batch update with a 4×4 S and the
 //                      dense Joseph form (I − K H) P (I − K H)ᵀ + K R Kᵀ.
 //   DenseDynamicEkf  — the same with Eigen::MatrixXd / VectorXd.
-// No gating, mismatch test or reference channel: the bench feeds clean data.
+// Like the filter: the seating bound when a free tip is held, and s, e and beta
+// as consider states (zero gain) while the tip is free. No gating, mismatch
+// test, release or reference channel: the bench feeds clean data.
 // Header-only so that a test can check the fast filter against it.
 
 #include <algorithm>
@@ -175,8 +177,18 @@ class DenseEkf {
       last_time_ = s.time_s;
       last_encoder_ = s.encoder_rad;
     } else {
+      // The seating bound, per joint: without a coupling effect the joints'
+      // cross-covariance is zero, so the 12-state bound is the two 6-state ones.
+      if (s.tip_fixed && !last_tip_fixed_) {
+        for (int j = 0; j < 2; ++j) {
+          estimation::FilterStateMatrix block = p_.template block<kS, kS>(kS * j, kS * j);
+          estimation::SeatingBound(&block, o.seating_bound_weight);
+          p_.template block<kS, kS>(kS * j, kS * j) = block;
+        }
+      }
       Predict(s);
     }
+    last_tip_fixed_ = s.tip_fixed;
     Update(s);
   }
 
@@ -232,7 +244,10 @@ class DenseEkf {
     }
     const typename Types::M84 ph = p_ * h.transpose();
     const typename Types::M44 innovation_cov = h * ph + r;
-    const typename Types::M84 gain = innovation_cov.ldlt().solve(ph.transpose()).transpose();
+    typename Types::M84 gain = innovation_cov.ldlt().solve(ph.transpose()).transpose();
+    if (!s.tip_fixed) {  // consider states (Schmidt–Kalman): s, e and beta keep their prior
+      for (int j = 0; j < 2; ++j) gain.middleRows(kS * j + estimation::kStateScale, 3).setZero();
+    }
     x_ += gain * innovation;
     const Matrix a = Matrix::Identity(kN, kN) - gain * h;
     p_ = (a * p_ * a.transpose() + gain * r * gain.transpose()).eval();
@@ -249,6 +264,7 @@ class DenseEkf {
   Vector x_;
   Matrix p_;
   bool initialised_ = false;
+  bool last_tip_fixed_ = false;
   double last_time_ = 0.0;
   Eigen::Vector2d last_encoder_{0.0, 0.0};
   estimation::MotorMotion motion_[2];
