@@ -215,11 +215,15 @@ class DenseEkf {
       f.row(i) = next[i].v.transpose();
     }
     Eigen::Matrix<double, kN, 1> q = model_.ProcessNoise(x_, s.tip_fixed, increment, dt);
-    p_ = (f * p_ * f.transpose()).eval();
     for (int j = 0; j < 2; ++j) {
       const int b = kS * j + 2;
-      q[b] = std::min(q[b], std::max(0.0, model_.BacklashCap(j) - p_(b, b)));
+      const Eigen::Matrix<double, kN, 1> f_row = f.row(b).transpose();
+      const auto bound = estimation::BoundBacklashVariance(
+          s.tip_fixed, f_row.dot(p_ * f_row), q[b], model_.BacklashCap(j));
+      f.row(b) *= bound.row_scale;
+      q[b] = bound.process_variance;
     }
+    p_ = (f * p_ * f.transpose()).eval();
     p_.diagonal() += q;
   }
 

@@ -229,17 +229,23 @@ void ComplianceFilter::Impl::Predict(int j, double dt, bool tip_fixed, bool seat
   // The shaft's wall is at the instrument's clearance δ + e, not the nominal δ.
   const StateJet clearance = delta[j] + StateJet(s.mean[kClearance], kClearance);
   const StateJet next = models::BacklashHysteresisStep(b, tau, clearance, width[j], relax);
-  const double fbt = next.v[kTorque];
-  const double fbb = next.v[kBacklash];
-  const double fbe = next.v[kClearance];
   // How firmly the load holds the shaft on a wall: S² = 1 beyond the width,
   // 0 at no load (BacklashProcessVariance).
   const double saturation = models::SmoothSaturation(s.mean[kTorque] / width[j]);
+  const double sd_delta = uncertainty[j].clearance_sd_rad;
+  const double prior_variance = (delta[j] * delta[j] + sd_delta * sd_delta) / 3.0;
+  Matrix& P = s.covariance;
+  // next.v is b's row of F (∂b+/∂(q_tip, tau, b, s, e, beta)).
+  const BacklashVarianceBound bound = BoundBacklashVariance(
+      tip_fixed, next.v.dot(P * next.v),
+      BacklashProcessVariance(o, dt, tip_fixed, relax, saturation, delta[j]), prior_variance);
+  const double fbt = bound.row_scale * next.v[kTorque];
+  const double fbb = bound.row_scale * next.v[kBacklash];
+  const double fbe = bound.row_scale * next.v[kClearance];
 
   s.mean[kTip] += tip_fixed ? 0.0 : encoder_increment;
   s.mean[kBacklash] = next.a;
 
-  Matrix& P = s.covariance;
   const Vector row = fbt * P.col(kTorque) + fbb * P.col(kBacklash) + fbe * P.col(kClearance);
   const double pbb = fbt * row[kTorque] + fbb * row[kBacklash] + fbe * row[kClearance];
   P.col(kBacklash) = row;
@@ -249,12 +255,7 @@ void ComplianceFilter::Impl::Predict(int j, double dt, bool tip_fixed, bool seat
   Vector q;
   q[kTip] = tip_fixed ? 0.0 : o.free_tip_rate_rad * o.free_tip_rate_rad * dt;
   q[kTorque] = o.external_torque_rate_nm * o.external_torque_rate_nm * dt;
-  const double sd_delta = uncertainty[j].clearance_sd_rad;
-  const double prior_variance = (delta[j] * delta[j] + sd_delta * sd_delta) / 3.0;
-  const double diffusion =
-      BacklashProcessVariance(o, dt, tip_fixed, relax, saturation, delta[j]);
-  // b lives in ±(δ + e): its variance never needs to exceed the uniform's (δ² + σ_δ²)/3.
-  q[kBacklash] = std::min(diffusion, std::max(0.0, prior_variance - pbb));
+  q[kBacklash] = bound.process_variance;
   q[kScale] = o.compliance_scale_rate * o.compliance_scale_rate * dt;
   q[kClearance] = 0.0;
   q[kOffset] = o.effort_offset_rate_nm * o.effort_offset_rate_nm * dt;

@@ -51,6 +51,20 @@ double BacklashProcessVariance(const FilterOptions& o, double dt, bool tip_fixed
          o.backlash_pinned_rate_rad * o.backlash_pinned_rate_rad * dt;
 }
 
+BacklashVarianceBound BoundBacklashVariance(bool tip_fixed, double propagated_variance,
+                                            double process_variance, double prior_variance) {
+  BacklashVarianceBound bound;
+  bound.process_variance = process_variance;
+  if (tip_fixed) return bound;
+  double propagated = propagated_variance;
+  if (propagated > prior_variance) {
+    bound.row_scale = std::sqrt(prior_variance / propagated);
+    propagated = prior_variance;
+  }
+  bound.process_variance = std::min(process_variance, prior_variance - propagated);
+  return bound;
+}
+
 void SeatingBound(FilterStateMatrix* covariance, double weight) {
   if (!(weight < 1.0)) return;
   FilterStateMatrix& p = *covariance;

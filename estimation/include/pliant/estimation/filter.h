@@ -21,7 +21,8 @@
 //   tau+   = tau + noise σ_τ̇²·dt            (random walk)
 //   b+     = BacklashHysteresisStep(b, tau, delta + e, r)  (models/effects/backlash_hysteresis.h;
 //            r = 1 − e^(−dt/T) while the joint moves, 0 at rest: BacklashRelax)
-//            + noise ((1 − g)·u + c·g·(1 − g)·δ²/3 + σ_pinned²·dt), variance ≤ δ²/3,
+//            + noise ((1 − g)·u + c·g·(1 − g)·δ²/3 + σ_pinned²·dt), variance ≤ δ²/3
+//            with the tip free (BoundBacklashVariance; not bounded held),
 //            g = S(tau/w)², u = σ_b²·dt (tip held, r = 0) or (1 − (1 − r)²)·δ²/3
 //            (tip free); c = backlash_transit_noise with the tip held, 0 free
 //            (BacklashProcessVariance)
@@ -258,11 +259,32 @@ class ComplianceFilter {
 /// this encoder increment: 1 − e^(−dt/T), weighted by min(1, |Δq|/3 counts).
 double BacklashRelax(const FilterOptions& options, double dt, double encoder_increment);
 
-/// The variance b's process adds in one step of dt (before the cap at the
-/// uniform's δ²/3), for load saturation S = S(tau/w), relax r (BacklashRelax)
+/// The variance b's process adds in one step of dt (before BoundBacklashVariance), for load saturation S = S(tau/w), relax r (BacklashRelax)
 /// and clearance δ: unloaded diffusion, the transit's uncertain pull, and σ_pinned.
 double BacklashProcessVariance(const FilterOptions& options, double dt, bool tip_fixed,
                                double relax, double saturation, double delta_rad);
+
+/// How b's variance is kept inside its clearance (b lives in ±(δ + e)) in one
+/// prediction: `row_scale` multiplies b's row of F, `process_variance` is the
+/// variance b's process adds. Free tip: at most the uniform's (δ² + σ_δ²)/3 =
+/// `prior_variance`, whether it came from F·P·Fᵀ (`propagated_variance`, b's
+/// diagonal entry before scaling: a noisy load near zero whose sign flips
+/// feeds its doubt into b through ∂b+/∂tau sample after sample) or from the
+/// process — the scale shrinks b's correlations with it, so the tip, read as
+/// q_enc − b, is never more uncertain than the clearance makes it. Held tip:
+/// neither is bounded. The encoders see tip + b there, so b's variance stays
+/// below the tip's anyway, and b's process noise is what lets a shaft that
+/// moves across its clearance move b rather than the held tip: with the tip
+/// and b anticorrelated from the free approach (ρ ≈ −1), a cap that withheld
+/// the noise once Var b reached δ²/3 froze that correlation, and the encoder
+/// then moved the held tip with the shaft — and b the other way
+/// (docs/filter.md, "Keeping b in its clearance").
+struct BacklashVarianceBound {
+  double row_scale = 1.0;
+  double process_variance = 0.0;
+};
+BacklashVarianceBound BoundBacklashVariance(bool tip_fixed, double propagated_variance,
+                                            double process_variance, double prior_variance);
 
 /// A covariance bound for the moment a free tip is seated: the load's block
 /// (row and column kStateTorque) is made uncorrelated with the rest, the rest
