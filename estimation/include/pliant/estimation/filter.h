@@ -259,8 +259,9 @@ class ComplianceFilter {
 /// this encoder increment: 1 − e^(−dt/T), weighted by min(1, |Δq|/3 counts).
 double BacklashRelax(const FilterOptions& options, double dt, double encoder_increment);
 
-/// The variance b's process adds in one step of dt (before BoundBacklashVariance), for load saturation S = S(tau/w), relax r (BacklashRelax)
-/// and clearance δ: unloaded diffusion, the transit's uncertain pull, and σ_pinned.
+/// The variance b's process adds in one step of dt (before BoundBacklashVariance),
+/// for load saturation S = S(tau/w), relax r (BacklashRelax) and clearance δ:
+/// unloaded diffusion, the transit's uncertain pull, and σ_pinned.
 double BacklashProcessVariance(const FilterOptions& options, double dt, bool tip_fixed,
                                double relax, double saturation, double delta_rad);
 
