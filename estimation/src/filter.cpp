@@ -235,19 +235,26 @@ void ComplianceFilter::Impl::Predict(int j, double dt, bool tip_fixed, bool seat
   const double sd_delta = uncertainty[j].clearance_sd_rad;
   const double prior_variance = (delta[j] * delta[j] + sd_delta * sd_delta) / 3.0;
   Matrix& P = s.covariance;
-  // next.v is b's row of F (∂b+/∂(q_tip, tau, b, s, e, beta)).
+  // b's row of F has three non-zeros (∂b+/∂tau, ∂b+/∂b, ∂b+/∂e): F·P's b-row
+  // and b's propagated variance cost three columns, computed once and then
+  // scaled by the bound (the bound scales b's row of F).
+  Vector row = next.v[kTorque] * P.col(kTorque) + next.v[kBacklash] * P.col(kBacklash) +
+               next.v[kClearance] * P.col(kClearance);
+  const double propagated = next.v[kTorque] * row[kTorque] +
+                            next.v[kBacklash] * row[kBacklash] +
+                            next.v[kClearance] * row[kClearance];
   const BacklashVarianceBound bound = BoundBacklashVariance(
-      tip_fixed, next.v.dot(P * next.v),
+      tip_fixed, propagated,
       BacklashProcessVariance(o, dt, tip_fixed, relax, saturation, delta[j]), prior_variance);
   const double fbt = bound.row_scale * next.v[kTorque];
   const double fbb = bound.row_scale * next.v[kBacklash];
   const double fbe = bound.row_scale * next.v[kClearance];
+  row *= bound.row_scale;
+  const double pbb = bound.row_scale * bound.row_scale * propagated;
 
   s.mean[kTip] += tip_fixed ? 0.0 : encoder_increment;
   s.mean[kBacklash] = next.a;
 
-  const Vector row = fbt * P.col(kTorque) + fbb * P.col(kBacklash) + fbe * P.col(kClearance);
-  const double pbb = fbt * row[kTorque] + fbb * row[kBacklash] + fbe * row[kClearance];
   P.col(kBacklash) = row;
   P.row(kBacklash) = row.transpose();
   P(kBacklash, kBacklash) = pbb;
