@@ -126,6 +126,10 @@ Command AddFilterCommand(CLI::App& app) {
          "--effort-offset-sd", [&f](double sd) { f.effort_offset_sd_nm.setConstant(sd); },
          "σ of a constant effort offset the bias torque misses, N·m (default 0: off, "
          "better on held-tip logs, docs/filter.md; nan: the parameters' covariance, else 0.02)");
+  sub->add_option("--output-step-limit", f.output_step_limit_counts,
+                  "Encoder counts the corrected angle may move per step beyond the encoder's own "
+                  "change (no jumps for a control loop; q_sd includes the gap; inf: off)")
+      ->capture_default_str();
   sub->add_option("--mismatch-window", f.mismatch_window,
                   "Samples in the windowed NIS test for model mismatch")
       ->capture_default_str();

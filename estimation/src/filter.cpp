@@ -14,7 +14,6 @@
 #include "chi_squared.h"
 #include "pliant/models/effects/backlash_hysteresis.h"
 #include "pliant/models/effects/compliance.h"
-#include "pliant/models/psm_kinematics.h"
 
 namespace pliant::estimation {
 namespace {
@@ -118,6 +117,10 @@ struct ComplianceFilter::Impl {
   Eigen::Vector2d last_encoder{0.0, 0.0};
   bool implausible_jump[2] = {false, false};  // encoder moved faster than any joint can
   MotorMotion motion[2];  // for the inertial torque in the effort
+  OutputStepLimiter limiter;
+  double output_count_rad = 0.0;       // one encoder count
+  Eigen::Vector2d encoder_step{0.0, 0.0};  // this step's encoder change (0 when not motion)
+  bool restart_output[2] = {true, true};  // the output jumps to the estimate this step
   int window_position = 0;
   int window_count = 0;
   double window_sum = 0.0;
@@ -153,6 +156,7 @@ ComplianceFilter::Impl::Impl(const models::ModelParameters& p, const FilterOptio
   }
   depth = 0.5 * (p.joints[0].depth_min_m + p.joints[0].depth_max_m);
   gate = internal::ChiSquaredQuantile(1.0, o.gate_probability);
+  output_count_rad = std::sqrt(12.0) * o.encoder_noise_rad;
   const int max_dof = kMaxScalarsPerStep * o.mismatch_window;
   window_threshold.resize(max_dof + 1);
   window_threshold[0] = 0.0;
@@ -182,6 +186,7 @@ void ComplianceFilter::Impl::Reset() {
     transition[j] = FilterTransition{};
     for (int& r : rejections[j]) r = 0;
     motion[j] = MotorMotion{};
+    restart_output[j] = true;
   }
   std::fill(window_nis.begin(), window_nis.end(), 0.0);
   std::fill(window_dof.begin(), window_dof.end(), 0);
@@ -365,6 +370,7 @@ void ComplianceFilter::Impl::ScalarUpdate(int j, Channel channel, const Vector& 
     S = h.dot(u) + variance;
     nis = innovation * innovation / S;
     tally->flags |= kFlagReacquired;
+    restart_output[j] = true;
   } else {
     tally->window_nis += nis;
     tally->window_dof += 1;
@@ -402,6 +408,7 @@ void ComplianceFilter::Impl::Repair(int j, const FilterSample& sample, StepTally
     s.mean << q, 0.0, 0.0, 1.0, 0.0, 0.0;
     s.covariance = PriorCovariance(options, delta[j], uncertainty[j]);
     tally->flags |= kFlagRepaired;
+    restart_output[j] = true;
     return;
   }
   if (!IsPositiveDefinite(s.covariance)) {
@@ -439,9 +446,11 @@ FilterEstimate ComplianceFilter::Impl::Step(const FilterSample& sample) {
     if (depth < jp.depth_min_m || depth > jp.depth_max_m) tally.flags |= kFlagDepthOutOfRange;
   }
 
+  encoder_step.setZero();
   if (!initialised) {
     Initialise(sample, depth);
     last_time = sample.time_s;
+    restart_output[0] = restart_output[1] = true;
   } else {
     const bool released =
         sample.tip_fixed && last_tip_fixed && std::abs(depth - previous_depth) > kMaxHeldDepthChange;
@@ -453,9 +462,11 @@ FilterEstimate ComplianceFilter::Impl::Step(const FilterSample& sample) {
       double increment = sample.encoder_rad[j] - last_encoder[j];
       implausible_jump[j] = std::abs(increment) > kMaxJointSpeed * dt;
       if (!(std::abs(increment) <= kMaxJointSpeed * dt)) increment = 0.0;
+      encoder_step[j] = increment;
       motion[j].Advance(options, dt, increment);
       if (released) {
         Release(j, dt, increment);
+        restart_output[j] = true;
       } else {
         Predict(j, dt, sample.tip_fixed, sample.tip_fixed && !last_tip_fixed, increment);
       }
@@ -525,39 +536,11 @@ FilterEstimate ComplianceFilter::Impl::Step(const FilterSample& sample) {
     tally.flags |= kFlagModelMismatch;
   }
   estimate.flags = tally.flags;
+  const Eigen::Vector2d limit =
+      encoder_step.cwiseAbs().array() + options.output_step_limit_counts * output_count_rad;
+  limiter.Apply(limit, restart_output, sample.encoder_rad, depth, &estimate);
+  restart_output[0] = restart_output[1] = false;
   return estimate;
-}
-
-FilterEstimate MakeEstimate(const FilterJointState& joint1, const FilterJointState& joint2,
-                            const Eigen::Vector2d& encoder_rad, double insertion_depth_m) {
-  FilterEstimate e;
-  const FilterJointState* joints[2] = {&joint1, &joint2};
-  for (int j = 0; j < 2; ++j) {
-    const auto& x = joints[j]->mean;
-    e.corrected_rad[j] = x[kTip];
-    e.covariance_rad2(j, j) = joints[j]->covariance(kTip, kTip);
-    e.external_torque_nm[j] = x[kTorque];
-    e.backlash_offset_rad[j] = x[kBacklash];
-    e.compliance_scale[j] = x[kScale];
-    e.clearance_error_rad[j] = x[kClearance];
-    e.effort_offset_nm[j] = x[kOffset];
-  }
-  // Tip correction: the uncorrected tip (encoders) minus the corrected one,
-  // through J = r·diag(cos q2, 1) (mm/rad); encoders are exact at this scale,
-  // so its covariance is J·C·Jᵀ, and the σ of its length is taken along it.
-  const Eigen::Vector2d q = encoder_rad.allFinite() ? encoder_rad : e.corrected_rad;
-  const Eigen::Matrix2d jac = models::TipDisplacementJacobianMm(
-      Eigen::Vector3d(q[0], q[1], insertion_depth_m));
-  const Eigen::Vector2d shift = jac * (q - e.corrected_rad);
-  const Eigen::Matrix2d tip_cov = jac * e.covariance_rad2 * jac.transpose();
-  e.tip_correction_mm = shift.norm();
-  if (e.tip_correction_mm > 1e-9) {
-    const Eigen::Vector2d along = shift / e.tip_correction_mm;
-    e.tip_correction_sd_mm = std::sqrt(along.dot(tip_cov * along));
-  } else {
-    e.tip_correction_sd_mm = std::sqrt(0.5 * tip_cov.trace());
-  }
-  return e;
 }
 
 ComplianceFilter::ComplianceFilter(const models::ModelParameters& parameters,

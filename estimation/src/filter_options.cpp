@@ -97,6 +97,11 @@ bool FilterOptions::IsValid(std::string* error) const {
                              "the model explains passes, e.g. 0.9999 or 0.99");
     }
   }
+  if (!(output_step_limit_counts > 0.0)) {  // NaN fails too; +infinity is "off"
+    return Fail(error, "FilterOptions::output_step_limit_counts must be > 0 — encoder counts the "
+                       "corrected angle may move per step beyond the encoder, e.g. 2, or "
+                       "infinity for no limit");
+  }
   if (!(seating_bound_weight > 0.0 && seating_bound_weight <= 1.0)) {
     return Fail(error, "FilterOptions::seating_bound_weight must lie in (0, 1] — e.g. 0.9, or 1 "
                        "to keep the tip–load correlation when the tip is seated");

@@ -67,7 +67,8 @@ double LargestHeldStep(double seating_bound_weight) {
     for (int j = 0; j < 2; ++j) {
       s.effort_nm[j] = models::BiasTorqueAt(p.joints[j], s.encoder_rad[j], depth) + noise(rng);
     }
-    const double corrected = filter.Step(s).corrected_rad[0];
+    // The estimate itself: the output step limit would hide its moves.
+    const double corrected = filter.Step(s).filtered_rad[0];
     if (k > 300) largest = std::max(largest, std::abs(corrected - last));
     last = corrected;
   }

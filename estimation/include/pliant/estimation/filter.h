@@ -142,6 +142,15 @@ struct FilterOptions {
   /// each effort sample would then move the held tip by up to 27 counts while
   /// the filter unlearns that tie. 1: off (the tie is kept).
   double seating_bound_weight = 0.9;
+  /// How far the corrected angle may move in one step beyond the encoder's
+  /// own change, in encoder counts (one count = √12 · encoder_noise_rad). Why:
+  /// a held tip learns where it is when the shaft meets its wall, and the
+  /// estimate then moves by up to ~20 counts in a sample; a control loop or
+  /// a virtual fixture must not see that as a jump. The output follows the
+  /// estimate at this rate and its covariance adds the known gap d = output −
+  /// estimate (the mean squared error P + d·dᵀ), flagged kFlagOutputLimited.
+  /// The filter's state never sees the limit. Infinity: off.
+  double output_step_limit_counts = 2.0;
   // Robustness.
   double gate_probability = 0.9999;  ///< χ²(1) gate on each scalar innovation
   int reacquire_after = 25;          ///< consecutive rejections before re-acquiring
@@ -176,12 +185,19 @@ enum FilterFlag : std::uint32_t {
   kFlagModelMismatch = 1u << 4,    ///< windowed NIS beyond its χ² quantile
   kFlagReacquired = 1u << 5,       ///< covariance inflated after repeated rejections
   kFlagRepaired = 1u << 6,         ///< covariance was not positive definite and was repaired
+  kFlagOutputLimited = 1u << 7,    ///< corrected angle behind the estimate (output step limit)
 };
 
 /// One control period's output.
 struct FilterEstimate {
-  Eigen::Vector2d corrected_rad{0.0, 0.0};   ///< q_tip: q̂1, q̂2
-  Eigen::Matrix2d covariance_rad2 = Eigen::Matrix2d::Zero();  ///< of q̂1, q̂2
+  /// q̂1, q̂2: the filter's q_tip, moved at most output_step_limit_counts
+  /// beyond the encoder's change per step (equal to filtered_rad but while
+  /// the limit holds it back: kFlagOutputLimited).
+  Eigen::Vector2d corrected_rad{0.0, 0.0};
+  /// Mean squared error of corrected_rad: the filter's covariance of q_tip
+  /// plus d·dᵀ, d = corrected_rad − filtered_rad.
+  Eigen::Matrix2d covariance_rad2 = Eigen::Matrix2d::Zero();
+  Eigen::Vector2d filtered_rad{0.0, 0.0};    ///< the filter's mean of q_tip, unlimited
   double tip_correction_mm = 0.0;     ///< |uncorrected tip − corrected tip| through the kinematics
   double tip_correction_sd_mm = 0.0;  ///< its standard deviation
   double nis = 0.0;                   ///< normalised innovation squared of the accepted updates
@@ -317,5 +333,22 @@ double ParameterStandardDeviation(const models::ModelParameters& parameters,
 /// filter and the smoother: corrected angles, covariance, tip correction.
 FilterEstimate MakeEstimate(const FilterJointState& joint1, const FilterJointState& joint2,
                             const Eigen::Vector2d& encoder_rad, double insertion_depth_m);
+
+/// The corrected angle a control loop sees: it follows the estimate but moves
+/// at most `limit_rad[j]` in a step (FilterOptions::output_step_limit_counts
+/// beyond the encoder's change), and its MSE adds the gap it leaves.
+class OutputStepLimiter {
+ public:
+  /// The next output toward `estimate` (its filtered_rad and corrected_rad are
+  /// the filter's mean on entry). `restart[j]`: joint j's output jumps to the
+  /// estimate (first sample, a release, a re-acquisition: the world changed).
+  /// Then corrected_rad, covariance_rad2, the tip correction and
+  /// kFlagOutputLimited describe the limited output.
+  void Apply(const Eigen::Vector2d& limit_rad, const bool restart[2], const Eigen::Vector2d& encoder_rad,
+             double insertion_depth_m, FilterEstimate* estimate);
+
+ private:
+  Eigen::Vector2d output_{0.0, 0.0};
+};
 
 }  // namespace pliant::estimation
