@@ -31,6 +31,9 @@ constexpr int kN = 2 * estimation::kFilterJointStates;  // 12
 constexpr int kS = estimation::kFilterJointStates;       // per joint
 using Jet8 = ceres::Jet<double, kN>;
 
+inline double ValueOf(double x) { return x; }
+inline double ValueOf(const Jet8& x) { return x.a; }
+
 // State order: (q_tip, tau, b, s, e, beta) of joint 1, then of joint 2.
 class EkfModel {
  public:
@@ -63,8 +66,10 @@ class EkfModel {
       T* nj = next + kS * j;
       nj[0] = xj[0] + (tip_fixed ? 0.0 : increment[j]);
       nj[1] = xj[1];
+      // The hold g as a constant, as the filter does (backlash_hysteresis.h).
       nj[2] = models::BacklashHysteresisStep(xj[2], xj[1], delta_[j] + xj[4], width_[j],
-                                             tip_fixed ? 0.0 : Relax(j, increment[j]));
+                                             tip_fixed ? 0.0 : Relax(j, increment[j]),
+                                             models::BacklashHold(ValueOf(xj[1]), width_[j]));
       nj[3] = xj[3];
       nj[4] = xj[4];
       nj[5] = xj[5];

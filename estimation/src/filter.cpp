@@ -233,7 +233,10 @@ void ComplianceFilter::Impl::Predict(int j, double dt, bool tip_fixed, bool seat
   const StateJet b(s.mean[kBacklash], kBacklash);
   // The shaft's wall is at the instrument's clearance δ + e, not the nominal δ.
   const StateJet clearance = delta[j] + StateJet(s.mean[kClearance], kClearance);
-  const StateJet next = models::BacklashHysteresisStep(b, tau, clearance, width[j], relax);
+  // g enters as a constant: the Jacobian keeps ∂b+/∂tau through the target
+  // δ·S(tau/w) but not through the hold (backlash_hysteresis.h says why).
+  const double hold = models::BacklashHold(s.mean[kTorque], width[j]);
+  const StateJet next = models::BacklashHysteresisStep(b, tau, clearance, width[j], relax, hold);
   // How firmly the load holds the shaft on a wall: S² = 1 beyond the width,
   // 0 at no load (BacklashProcessVariance).
   const double saturation = models::SmoothSaturation(s.mean[kTorque] / width[j]);

@@ -355,8 +355,13 @@ TEST(ComplianceFilter, AgreesWithTheDenseFilterWhenTheModelIsLinear) {
   CompareWithDense(1e-6, 1e-3, 1e-3);
 }
 
+// The standard deviations differ by up to 4.3 % (under 2 % with a two-sided
+// pull): a load only pushes the shaft (backlash_hysteresis.h), so ∂b+/∂b
+// switches from 1 − g to 1 where the push meets the shaft, and two filters
+// that linearise the encoder at slightly different points sit on either side
+// of it for a sample.
 TEST(ComplianceFilter, AgreesWithTheDenseFilterUpToLinearisation) {
-  CompareWithDense(0.1, 0.1, 0.02);
+  CompareWithDense(0.1, 0.1, 0.05);
 }
 
 // A free tip: s, e and beta are consider states in both filters. Measured

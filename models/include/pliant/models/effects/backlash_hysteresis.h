@@ -10,10 +10,17 @@
 //
 //   p  = delta·S(tau/w)                      (S: smooth.h's saturation)
 //   g  = S(tau/w)²                           (how firmly the load holds the shaft)
-//   b+ = b + g·(p − b) − (1 − g)·r·b
+//   b+ = b + g·(p − b) − (1 − g)·r·b         while p − b has the sign of tau
+//   b+ = b − (1 − g)·r·b                     otherwise
 //
 // so |tau| >= w puts the shaft exactly on the wall (g = 1, p = ±delta), and at
-// |tau| << w the shaft barely moves (g ≈ (15·tau/8w)²). r in [0, 1] is the
+// |tau| << w the shaft barely moves (g ≈ (15·tau/8w)²). A load only pushes:
+// it moves the shaft toward the wall it points at and never back toward the
+// middle. A shaft already nearer that wall than p stays there — a load easing
+// from 2w to w/2 leaves it on its wall, as a real clearance does; pulling it
+// back to p (the dead-zone position) was evidence the filter counted afresh
+// every sample while the load held, and it drove the compliance scale and
+// the held tip away (docs/validation.md, Part 4, "Partial loads"). r in [0, 1] is the
 // fraction by which an unloaded shaft forgets its wall in this sample
 // (the filter: r = 1 − exp(−|Δq|/(c·δ)) for an encoder increment Δq; 0: it
 // never does): nothing holds an unloaded shaft on a wall, so as the arm moves
@@ -22,8 +29,9 @@
 // fraction: at 1.5 kHz, effort noise of 0.06·w relaxes a free shaft toward
 // the centre with a time constant of about 50 ms; a filter that keeps b
 // gives it process noise in proportion to 1 − g, and a fixed tip lets the
-// encoders see it directly. b+, g and their derivatives are continuous in
-// tau and b: the filter differentiates the step with ceres::Jet.
+// encoders see it directly. b+ and g are continuous in tau and b, and so are
+// their derivatives but where p = b (the push meets the shaft): the filter
+// differentiates the step with ceres::Jet.
 //
 // As a memoryless effect (the catalogue's interface) it is the steady state,
 // delta·S(tau/w): the dead-zone deflection. The online filter and a simulator
@@ -38,17 +46,41 @@
 
 namespace pliant::models {
 
+/// g = S(tau/w)²: how firmly a load tau (N·m) holds the shaft on a wall, 0 at
+/// no load, 1 from the dead-zone width w (N·m, > 0) on.
+template <typename T>
+T BacklashHold(const T& external_torque_nm, double width_nm) {
+  const T saturation = SmoothSaturation(external_torque_nm / width_nm);
+  return saturation * saturation;
+}
+
 /// The offset b+ (rad) after one sample at external torque tau (N·m), from the
 /// offset b (rad), for backlash delta (rad) and dead-zone width w (N·m, > 0);
-/// relax (in [0, 1]) is the fraction an unloaded shaft forgets this sample.
-/// delta may be a T itself (the filter's clearance with its error state).
+/// relax (in [0, 1]) is the fraction an unloaded shaft forgets this sample;
+/// hold is g = BacklashHold(tau, w). delta may be a T itself (the filter's
+/// clearance with its error state). The filter passes g as a constant, so
+/// that its Jacobian has no ∂g/∂tau: g is a smooth stand-in for whether a
+/// contact holds the shaft, and at low load its slope times the distance to
+/// the target (up to 2δ) tied b to every effort sample's noise, a correlation
+/// a clearance does not have — a shaft's place does not follow the size of a
+/// small load. Through it the held tip and b drifted by δ over a few seconds
+/// of an unloaded joint (docs/validation.md, Part 4, "Seventh pass").
+template <typename T, typename Delta, typename Hold>
+T BacklashHysteresisStep(const T& offset_rad, const T& external_torque_nm, const Delta& delta_rad,
+                         double width_nm, double relax, const Hold& hold) {
+  const T push = delta_rad * SmoothSaturation(external_torque_nm / width_nm) - offset_rad;
+  const T forget = (T(1.0) - hold) * (relax * offset_rad);
+  if (push * external_torque_nm >= T(0.0)) return offset_rad + hold * push - forget;
+  return offset_rad - forget;
+}
+
+/// The same, with g = BacklashHold(tau, w) computed here (the simulation of the
+/// model's own truth, where nothing is differentiated).
 template <typename T, typename Delta = double>
 T BacklashHysteresisStep(const T& offset_rad, const T& external_torque_nm, const Delta& delta_rad,
                          double width_nm, double relax = 0.0) {
-  const T saturation = SmoothSaturation(external_torque_nm / width_nm);
-  const T hold = saturation * saturation;
-  return offset_rad + hold * (delta_rad * saturation - offset_rad) -
-         (T(1.0) - hold) * (relax * offset_rad);
+  return BacklashHysteresisStep(offset_rad, external_torque_nm, delta_rad, width_nm, relax,
+                                BacklashHold(external_torque_nm, width_nm));
 }
 
 /// Catalogue form: the steady state delta_j·S(tau_j/w_j) per joint (rad).
