@@ -42,6 +42,9 @@ struct Push {
   double direction_deg = 0.0;
   double peak_torque_nm = 0.0;
   double held_pick = 0.5;  ///< in (0, 1): which held row gives the run's held NEES sample
+  /// Where each joint's shaft starts, in (−1, 1) of its clearance δ: uniform,
+  /// as the filter's prior says (wherever the last motion left it).
+  double shaft_start[2] = {0.0, 0.0};
 };
 
 /// Continuous loads: direction uniform on [0, 360) deg and peak uniform on
@@ -58,6 +61,7 @@ inline Push DrawPush(bool continuous, std::uint64_t seed, int run) {
   push.direction_deg = direction.Quantile(stream.Uniform());
   push.peak_torque_nm = peak.Quantile(stream.Uniform());
   push.held_pick = stream.Uniform();
+  for (double& start : push.shaft_start) start = 2.0 * stream.Uniform() - 1.0;
   if (!continuous) {
     push.direction_deg = 45.0 * ((run / 3) % 8);
     push.peak_torque_nm = (run / 24) % 2 ? 1.0 : 0.5;

@@ -36,7 +36,7 @@ PsmPlant::PsmPlant(const Scenario& scenario, const TruthModel& truth,
   for (int j = 0; j < 2; ++j) {
     y[j] = angle_rad[j];
     y[2 + j] = 0.0;
-    y[4 + j] = centre[j];  // shaft in the middle of the clearance
+    y[4 + j] = centre[j] + scenario.truth.initial_shaft_offset_rad[j];  // inside the clearance
     y[6 + j] = 0.0;
   }
   // BDF with Newton iterations: a light tip on a stiff shaft makes the system

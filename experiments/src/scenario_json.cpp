@@ -40,6 +40,7 @@ void ReadTruth(const ScenarioReader& r, const json& t, Truth& out) {
            {{"compliance", true},
             {"backlash_rad", true},
             {"backlash_centre_rad", false},
+            {"initial_shaft_offset_rad", false},
             {"bias_torque", false}});
   const json& c = t["compliance"];
   const std::string pc = p + "/compliance";
@@ -69,6 +70,14 @@ void ReadTruth(const ScenarioReader& r, const json& t, Truth& out) {
     joint.backlash_rad = backlash[j];
   }
   Optional(r, t, p, "backlash_centre_rad", out.backlash_centre_rad, "rad", -0.05, 0.05);
+  Optional(r, t, p, "initial_shaft_offset_rad", out.initial_shaft_offset_rad, "rad", -0.05, 0.05);
+  for (int j = 0; j < 2; ++j) {
+    if (std::abs(out.initial_shaft_offset_rad[j]) >= backlash[j]) {
+      r.Fail(p + "/initial_shaft_offset_rad",
+             "joint " + std::to_string(j + 1) + "'s shaft starts at or beyond its wall",
+             "give an offset inside the clearance, |offset| < backlash_rad");
+    }
+  }
   if (t.contains("bias_torque")) {
     const json& b = t["bias_torque"];
     const std::string pb = p + "/bias_torque";

@@ -189,6 +189,26 @@ TEST(HiddenEffects, AnOffCentreClearanceShiftsTheGapNotItsWidth) {
   EXPECT_NEAR(fit.gap_rad, 2 * 0.008478, 0.05 * 2 * 0.008478);
 }
 
+// Not a hidden effect but the same kind of check: an unloaded shaft stays
+// where it starts in its clearance, so the encoders read the tip plus that
+// offset until a load moves it.
+TEST(HiddenEffects, AShaftStartsWhereTheScenarioPutsIt) {
+  const io::Log log = Simulate(Load("divot", {"hidden_effects={}", "experiment.depths_m=[0.15]",
+                                              "experiment.directions_deg=[0]",
+                                              "experiment.peak_torques_nm=[0.5]",
+                                              "experiment.speeds_rad_s=[0.02]",
+                                              "truth.initial_shaft_offset_rad=[0.004,-0.003]"}),
+                               3)
+                          .log;
+  const auto q1 = log.Column("q1"), q1_true = log.Column("q1_true");
+  const auto q2 = log.Column("q2"), q2_true = log.Column("q2_true");
+  // The first second: free tip, arm at rest. One encoder count is 7.7 µrad.
+  for (std::size_t k = 0; k < 1400; k += 100) {
+    EXPECT_NEAR(q1[k] - q1_true[k], 0.004, 1e-5) << k;
+    EXPECT_NEAR(q2[k] - q2_true[k], -0.003, 1e-5) << k;
+  }
+}
+
 TEST(HiddenEffects, TrackerSeesTheTipWithItsOwnNoise) {
   const io::Log log = Simulate(Load("free_motion", {"experiment.duration_s=2"}), 1).log;
   const auto ref = log.Column("q1_ref"), truth = log.Column("q1_true");

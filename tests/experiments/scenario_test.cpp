@@ -101,6 +101,14 @@ TEST(Scenario, DepthOutsideTheComplianceRangeIsRefusedAtItsElement) {
   EXPECT_EQ(f.problem(), "depth 0.05 m is outside the truth's compliance range [0.09, 0.22] m");
 }
 
+TEST(Scenario, AShaftThatStartsBeyondItsWallIsRefused) {
+  const auto e = ParseError(Replace(kMinimal, "\"backlash_rad\": [0.008478, 0.007176]",
+                                    "\"backlash_rad\": [0.008478, 0.007176],\n"
+                                    "    \"initial_shaft_offset_rad\": [0.001, -0.0072]"));
+  EXPECT_EQ(e.line(), 10u);
+  EXPECT_EQ(e.problem(), "joint 2's shaft starts at or beyond its wall") << e.what();
+}
+
 TEST(Scenario, OverrideErrorsNameTheOverride) {
   const auto e = ParseError(kMinimal, {"experiment.depths_m=[0.3]"});
   EXPECT_EQ(e.file(), "--set experiment.depths_m=[0.3]");

@@ -76,6 +76,9 @@ struct FreeMotionProtocol {
 struct Truth {
   std::array<models::JointParameters, 2> joints;
   Eigen::Vector2d backlash_centre_rad{0.0, 0.0};  ///< the clearance off-centre
+  /// Where the shaft starts inside its clearance, rad from its centre (|·| < δ):
+  /// wherever the last motion left it. 0: in the middle.
+  Eigen::Vector2d initial_shaft_offset_rad{0.0, 0.0};
   Eigen::Vector2d bias_depth_slope_nm_per_m{0.0, -0.2419};
   double bias_reference_depth_m = 0.155;
 };
