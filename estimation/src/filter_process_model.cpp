@@ -83,10 +83,21 @@ void SeatingBound(FilterStateMatrix* covariance, double weight) {
 }
 
 void MotorMotion::Advance(const FilterOptions& o, double dt, double encoder_increment) {
-  const double r = -std::expm1(-dt / o.acceleration_filter_time_s);
-  const double v = velocity_rad_s + r * (encoder_increment / dt - velocity_rad_s);
-  acceleration_rad_s2 += r * ((v - velocity_rad_s) / dt - acceleration_rad_s2);
-  velocity_rad_s = v;
+  // Morrison's fading-memory filter of degree 2 (a critically damped α-β-γ
+  // tracker, all three closed-loop poles at θ): in steady state the estimate is
+  // the quadratic fitted to the encoder angle by least squares with weights θ^k
+  // on the sample k steps back, evaluated at the newest sample.
+  const double theta = std::exp(-dt / o.acceleration_filter_time_s);
+  const double u = 1.0 - theta;
+  const double g_velocity = 1.5 * u * u * (1.0 + theta);
+  const double g_acceleration = 0.5 * u * u * u;
+  // The angle is kept relative to the last encoder reading, so no absolute
+  // angle (and no loss of precision far from zero) is needed.
+  const double residual = encoder_increment - (position_offset_rad + velocity_rad_s * dt +
+                                               0.5 * acceleration_rad_s2 * dt * dt);
+  position_offset_rad = -theta * theta * theta * residual;  // prediction + (1 − θ³)·residual
+  velocity_rad_s += acceleration_rad_s2 * dt + g_velocity / dt * residual;
+  acceleration_rad_s2 += 2.0 * g_acceleration / (dt * dt) * residual;
 }
 
 double MotorMotion::InertialTorque(const FilterOptions& o) const {

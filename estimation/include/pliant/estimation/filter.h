@@ -104,11 +104,12 @@ struct FilterOptions {
   /// Motor-side inertia J reflected at joints 1 and 2, kg·m². The effort
   /// accelerates the motor as well as loading the shaft: with the tip held the
   /// filter reads tau_meas − tau0 − J·θ̈ as the load, θ̈ from the encoders
-  /// through two low-pass stages of this time constant. 0 (the default): the whole effort
+  /// by a fading-memory quadratic fit of this memory time constant
+  /// (MotorMotion). 0 (the default): the whole effort
   /// is load, right for logs drawn from the quasi-static model; the simulator's
   /// arm (experiments JointDynamics) has 0.08.
   double motor_inertia_kg_m2 = 0.0;
-  double acceleration_filter_time_s = 0.01;
+  double acceleration_filter_time_s = 0.004;
   /// Relative error of the deflection model, as encoder variance (this × K·tau)².
   double deflection_model_error = 0.06;
   // Priors.
@@ -313,12 +314,18 @@ BacklashVarianceBound BoundBacklashVariance(bool tip_fixed, double propagated_va
 /// ω ≥ 1 leaves P as it is.
 void SeatingBound(FilterStateMatrix* covariance, double weight);
 
-/// The motor's velocity and acceleration from encoder increments: the
-/// increment over dt low-passed to a velocity, its difference low-passed again
-/// (time constant options.acceleration_filter_time_s each; lag about 2T).
+/// The motor's velocity and acceleration from encoder increments: a
+/// fading-memory quadratic fit to the encoder angle (Morrison's degree-2
+/// filter, a critically damped α-β-γ tracker), memory time constant
+/// T = options.acceleration_filter_time_s (θ = exp(−dt/T) per sample). Exact
+/// on a quadratic angle; under a constant jerk the acceleration is about 2.9 T
+/// late (12 ms at the default 4 ms, the same encoder-count flicker as the
+/// two 10 ms low-pass stages it replaces, which were 20 ms late).
+/// Allocation-free, constant time, no throw.
 struct MotorMotion {
   double velocity_rad_s = 0.0;
   double acceleration_rad_s2 = 0.0;
+  double position_offset_rad = 0.0;  ///< fitted angle − last encoder reading
   void Advance(const FilterOptions& options, double dt, double encoder_increment);
   /// J·θ̈ (N·m), never beyond the effort limit: no motor accelerates faster
   /// than its largest effort can drive it, and an encoder outlier must not
