@@ -66,10 +66,10 @@ class EkfModel {
       T* nj = next + kS * j;
       nj[0] = xj[0] + (tip_fixed ? 0.0 : increment[j]);
       nj[1] = xj[1];
-      // The hold g as a constant, as the filter does (backlash_hysteresis.h).
+      // The hold g of the sure load, as a constant, as the filter does.
       nj[2] = models::BacklashHysteresisStep(xj[2], xj[1], delta_[j] + xj[4], width_[j],
                                              tip_fixed ? 0.0 : Relax(j, increment[j]),
-                                             models::BacklashHold(ValueOf(xj[1]), width_[j]));
+                                             models::BacklashHold(sure_load_[j], width_[j]));
       nj[3] = xj[3];
       nj[4] = xj[4];
       nj[5] = xj[5];
@@ -98,7 +98,7 @@ class EkfModel {
     const auto& o = options_;
     Eigen::Matrix<double, kN, 1> q;
     for (int j = 0; j < 2; ++j) {
-      const double sat = models::SmoothSaturation(x[kS * j + 1] / width_[j]);
+      const double sat = models::SmoothSaturation(sure_load_[j] / width_[j]);
       q[kS * j] = tip_fixed ? 0.0 : o.free_tip_rate_rad * o.free_tip_rate_rad * dt;
       q[kS * j + 1] = o.external_torque_rate_nm * o.external_torque_rate_nm * dt;
       const double relax = tip_fixed ? 0.0 : Relax(j, increment[j]);
@@ -112,8 +112,11 @@ class EkfModel {
   }
 
   double SteadyBacklash(int j, double tau) const {
-    return delta_[j] * models::SmoothSaturation(tau / width_[j]);
+    const double noise = options_.effort_noise_nm * options_.effort_noise_nm;
+    return delta_[j] * models::SmoothSaturation(estimation::SureLoad(options_, tau, noise) / width_[j]);
   }
+  /// The loads the filter is sure of (SureLoad), set before each prediction.
+  double sure_load_[2] = {0.0, 0.0};
   double Compliance(int j, double depth) const {
     return models::ComplianceAt(parameters_.joints[j], depth);
   }
@@ -213,6 +216,10 @@ class DenseEkf {
     for (int j = 0; j < 2; ++j) motion_[j].Advance(model_.options(), dt, increment[j]);
     Jet8 x[kN], next[kN];
     for (int i = 0; i < kN; ++i) x[i] = Jet8(x_[i], i);
+    for (int j = 0; j < 2; ++j) {
+      const int t = kS * j + 1;
+      model_.sure_load_[j] = estimation::SureLoad(model_.options(), x_[t], p_(t, t));
+    }
     model_.Process(x, s.tip_fixed, increment, dt, next);
     Matrix f(kN, kN);
     for (int i = 0; i < kN; ++i) {
@@ -250,6 +257,10 @@ class DenseEkf {
       const double deflection = o.deflection_model_error * h(j, kS * j + 3);  // error × K·tau
       r(j, j) = o.encoder_noise_rad * o.encoder_noise_rad + deflection * deflection;
       r(2 + j, 2 + j) = o.effort_noise_nm * o.effort_noise_nm;
+      // s is taught by the sure load, as in the filter.
+      const int t = kS * j + 1;
+      const double sure = estimation::SureLoad(o, x_[t], p_(t, t));
+      h(j, kS * j + 3) = x_[t] != 0.0 ? h(j, kS * j + 3) * (sure / x_[t]) : 0.0;
     }
     const typename Types::M84 ph = p_ * h.transpose();
     const typename Types::M44 innovation_cov = h * ph + r;

@@ -203,7 +203,9 @@ void ComplianceFilter::Impl::Initialise(const FilterSample& sample, double depth
     const double tau = std::isfinite(sample.effort_nm[j]) ? sample.effort_nm[j] - tau0 : 0.0;
     // Start where the model puts the tip for this sample (the dead-zone
     // correction), so that the first encoder update adds no information twice.
-    const double b = delta[j] * models::SmoothSaturation(tau / width[j]);
+    // One effort sample: a load within its noise puts the shaft nowhere in particular.
+    const double sure = SureLoad(options, tau, options.effort_noise_nm * options.effort_noise_nm);
+    const double b = delta[j] * models::SmoothSaturation(sure / width[j]);
     const double tip = q - b - models::ComplianceAt(parameters.joints[j], depth_m) * tau;
     joint[j].mean << tip, tau, b, 1.0, 0.0, 0.0;
     joint[j].covariance = PriorCovariance(options, delta[j], uncertainty[j]);
@@ -235,11 +237,13 @@ void ComplianceFilter::Impl::Predict(int j, double dt, bool tip_fixed, bool seat
   const StateJet clearance = delta[j] + StateJet(s.mean[kClearance], kClearance);
   // g enters as a constant: the Jacobian keeps ∂b+/∂tau through the target
   // δ·S(tau/w) but not through the hold (backlash_hysteresis.h says why).
-  const double hold = models::BacklashHold(s.mean[kTorque], width[j]);
+  // The hold is that of the load the filter is sure of (load_margin_sd).
+  const double sure_load = SureLoad(o, s.mean[kTorque], s.covariance(kTorque, kTorque));
+  const double hold = models::BacklashHold(sure_load, width[j]);
   const StateJet next = models::BacklashHysteresisStep(b, tau, clearance, width[j], relax, hold);
   // How firmly the load holds the shaft on a wall: S² = 1 beyond the width,
   // 0 at no load (BacklashProcessVariance).
-  const double saturation = models::SmoothSaturation(s.mean[kTorque] / width[j]);
+  const double saturation = models::SmoothSaturation(sure_load / width[j]);
   const double sd_delta = uncertainty[j].clearance_sd_rad;
   const double prior_variance = (delta[j] * delta[j] + sd_delta * sd_delta) / 3.0;
   Matrix& P = s.covariance;
@@ -480,6 +484,16 @@ FilterEstimate ComplianceFilter::Impl::Step(const FilterSample& sample) {
   }
   last_tip_fixed = sample.tip_fixed;
 
+  // s is taught by the load the filter is sure of: ∂h/∂s = K·tau scaled to
+  // SureLoad (K·tau is linear in tau), so that a load within its noise is not
+  // a regressor whose noise biases s toward 0. Taken at the prediction, as the
+  // dense baselines, which update all channels at once, do.
+  double sure_fraction[2];
+  for (int j = 0; j < 2; ++j) {
+    const double tau = joint[j].mean[kTorque];
+    sure_fraction[j] =
+        tau != 0.0 ? SureLoad(options, tau, joint[j].covariance(kTorque, kTorque)) / tau : 0.0;
+  }
   // Efforts: tau_meas − tau0(q_enc, L) = tau + beta (tau0 is evaluated at the
   // measured angle, an input, so its row is the unit vectors of tau and beta).
   for (int j = 0; j < 2; ++j) {
@@ -516,6 +530,7 @@ FilterEstimate ComplianceFilter::Impl::Step(const FilterSample& sample) {
       continue;
     }
     const double deflection = options.deflection_model_error * h[j][kScale];
+    h[j][kScale] *= sure_fraction[j];
     ScalarUpdate(j, kEncoderChannel, h[j], sample.encoder_rad[j] - predicted[j],
                  options.encoder_noise_rad * options.encoder_noise_rad + deflection * deflection,
                  &tally, implausible_jump[j] && !sample.tip_fixed, !sample.tip_fixed);

@@ -84,6 +84,10 @@ bool FilterOptions::IsValid(std::string* error) const {
     return Fail(error, "FilterOptions::deflection_model_error must be finite and >= 0 — a "
                        "fraction of K·tau, e.g. 0.06, or 0 for logs drawn from the model");
   }
+  if (!(std::isfinite(load_margin_sd) && load_margin_sd >= 0.0)) {
+    return Fail(error, "FilterOptions::load_margin_sd must be finite and >= 0 — standard "
+                       "deviations of the load estimate, e.g. 2, or 0 to count every load");
+  }
   if (!(std::isfinite(motor_inertia_kg_m2) && motor_inertia_kg_m2 >= 0.0)) {
     return Fail(error, "FilterOptions::motor_inertia_kg_m2 must be finite and >= 0 — the motor "
                        "inertia reflected at the joint in kg·m², or 0 to read the whole effort "

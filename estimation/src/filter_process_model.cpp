@@ -21,6 +21,11 @@ double ParameterStandardDeviation(const models::ModelParameters& p, const std::s
   return std::sqrt(std::max(0.0, p.covariance->matrix(i, i)));
 }
 
+double SureLoad(const FilterOptions& o, double tau_nm, double tau_variance_nm2) {
+  const double margin = o.load_margin_sd * std::sqrt(std::max(0.0, tau_variance_nm2));
+  return std::copysign(std::max(0.0, std::abs(tau_nm) - margin), tau_nm);
+}
+
 // The fraction of its wall an unloaded shaft forgets in one step: with time
 // constant T while the joint moves (an encoder increment of 3 counts or more
 // per step counts fully, less in proportion), nothing while it rests.

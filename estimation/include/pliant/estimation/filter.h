@@ -112,6 +112,15 @@ struct FilterOptions {
   double acceleration_filter_time_s = 0.004;
   /// Relative error of the deflection model, as encoder variance (this × K·tau)².
   double deflection_model_error = 0.06;
+  /// A load counts only beyond this many of its own standard deviations
+  /// (SureLoad): it pulls the shaft toward a wall (the hold g) and teaches the
+  /// compliance scale (∂h/∂s = K·tau) with the part of tau the filter is sure
+  /// of. Why: at a load within its noise, a pull of random sign reverted a
+  /// held, unloaded shaft toward the middle of its clearance, which the
+  /// filter then took as knowledge of the tip (NEES 9 on such joints); and a
+  /// noisy tau as the regressor of s biased s toward 0 (errors in variables:
+  /// s 1 → 0.72 over 40 s of an unloaded joint). 0: every load counts.
+  double load_margin_sd = 2.0;
   // Priors.
   double compliance_scale_sd = 0.1;       ///< s starts at 1 ± this
   /// σ_δ per joint (rad): how far the instrument's clearance may lie from the
@@ -273,6 +282,11 @@ class ComplianceFilter {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+/// The part of a load estimate tau (N·m, variance in N·m²) that the filter is
+/// sure of: tau moved toward 0 by options.load_margin_sd standard deviations,
+/// 0 when it would cross zero.
+double SureLoad(const FilterOptions& options, double tau_nm, double tau_variance_nm2);
 
 /// The fraction r of its wall an unloaded shaft forgets in a step of dt with
 /// this encoder increment: 1 − e^(−dt/T), weighted by min(1, |Δq|/3 counts).
