@@ -92,7 +92,7 @@ struct ComplianceFilter::Impl {
   void ScalarUpdate(int j, Channel channel, const Vector& h, double innovation,
                     double variance, StepTally* tally, bool implausible = false,
                     bool consider_instrument = false);
-  void Repair(int j, const FilterSample& sample, StepTally* tally);
+  void Repair(int j, const FilterSample& sample, bool full_check, StepTally* tally);
   void UpdateWindow(StepTally* tally);
 
   models::ModelParameters parameters;
@@ -122,6 +122,7 @@ struct ComplianceFilter::Impl {
   Eigen::Vector2d encoder_step{0.0, 0.0};  // this step's encoder change (0 when not motion)
   bool restart_output[2] = {true, true};  // the output jumps to the estimate this step
   int window_position = 0;
+  int checked_joint = 0;  // whose covariance gets the full Cholesky test this step
   int window_count = 0;
   double window_sum = 0.0;
   int window_dof_sum = 0;
@@ -190,7 +191,7 @@ void ComplianceFilter::Impl::Reset() {
   }
   std::fill(window_nis.begin(), window_nis.end(), 0.0);
   std::fill(window_dof.begin(), window_dof.end(), 0);
-  window_position = window_count = window_dof_sum = 0;
+  window_position = window_count = window_dof_sum = checked_joint = 0;
   window_sum = 0.0;
 }
 
@@ -403,7 +404,8 @@ void ComplianceFilter::Impl::ScalarUpdate(int j, Channel channel, const Vector& 
   tally->dof += 1;
 }
 
-void ComplianceFilter::Impl::Repair(int j, const FilterSample& sample, StepTally* tally) {
+void ComplianceFilter::Impl::Repair(int j, const FilterSample& sample, bool full_check,
+                                    StepTally* tally) {
   FilterJointState& s = joint[j];
   // A clearance is never negative nor twice the nominal one.
   s.mean[kClearance] = std::clamp(s.mean[kClearance], -delta[j], delta[j]);
@@ -418,7 +420,11 @@ void ComplianceFilter::Impl::Repair(int j, const FilterSample& sample, StepTally
     restart_output[j] = true;
     return;
   }
-  if (!IsPositiveDefinite(s.covariance)) {
+  // The Joseph form keeps P positive semi-definite but for rounding: a
+  // non-positive variance is looked for every step, the full Cholesky test
+  // (a fifth of a step's time) runs on each block every other step.
+  const bool diagonal_positive = (s.covariance.diagonal().array() > 0.0).all();
+  if (!diagonal_positive || (full_check && !IsPositiveDefinite(s.covariance))) {
     const double jitter = 1e-12 * s.covariance.diagonal().cwiseAbs().maxCoeff() + 1e-20;
     s.covariance.diagonal() = s.covariance.diagonal().cwiseAbs().array() + jitter;
     tally->flags |= kFlagRepaired;
@@ -541,7 +547,8 @@ FilterEstimate ComplianceFilter::Impl::Step(const FilterSample& sample) {
     ScalarUpdate(j, kReferenceChannel, Vector::Unit(kTip), ref - joint[j].mean[kTip],
                  options.reference_noise_rad * options.reference_noise_rad, &tally);
   }
-  for (int j = 0; j < 2; ++j) Repair(j, sample, &tally);
+  for (int j = 0; j < 2; ++j) Repair(j, sample, j == checked_joint, &tally);
+  checked_joint ^= 1;
   UpdateWindow(&tally);
 
   FilterEstimate estimate = MakeEstimate(joint[0], joint[1], sample.encoder_rad, depth);
