@@ -259,8 +259,7 @@ class DenseEkf {
       r(2 + j, 2 + j) = o.effort_noise_nm * o.effort_noise_nm;
       // s is taught by the sure load, as in the filter.
       const int t = kS * j + 1;
-      const double sure = estimation::SureLoad(o, x_[t], p_(t, t));
-      h(j, kS * j + 3) = x_[t] != 0.0 ? h(j, kS * j + 3) * (sure / x_[t]) : 0.0;
+      h(j, kS * j + 3) *= estimation::SureLoadFraction(o, x_[t], p_(t, t));
     }
     const typename Types::M84 ph = p_ * h.transpose();
     const typename Types::M44 innovation_cov = h * ph + r;

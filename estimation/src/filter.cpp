@@ -496,9 +496,8 @@ FilterEstimate ComplianceFilter::Impl::Step(const FilterSample& sample) {
   // dense baselines, which update all channels at once, do.
   double sure_fraction[2];
   for (int j = 0; j < 2; ++j) {
-    const double tau = joint[j].mean[kTorque];
-    sure_fraction[j] =
-        tau != 0.0 ? SureLoad(options, tau, joint[j].covariance(kTorque, kTorque)) / tau : 0.0;
+    sure_fraction[j] = SureLoadFraction(options, joint[j].mean[kTorque],
+                                        joint[j].covariance(kTorque, kTorque));
   }
   // Efforts: tau_meas − tau0(q_enc, L) = tau + beta (tau0 is evaluated at the
   // measured angle, an input, so its row is the unit vectors of tau and beta).

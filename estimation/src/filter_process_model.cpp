@@ -26,6 +26,10 @@ double SureLoad(const FilterOptions& o, double tau_nm, double tau_variance_nm2) 
   return std::copysign(std::max(0.0, std::abs(tau_nm) - margin), tau_nm);
 }
 
+double SureLoadFraction(const FilterOptions& o, double tau_nm, double tau_variance_nm2) {
+  return tau_nm != 0.0 ? SureLoad(o, tau_nm, tau_variance_nm2) / tau_nm : 0.0;
+}
+
 // The fraction of its wall an unloaded shaft forgets in one step: with time
 // constant T while the joint moves (an encoder increment of 3 counts or more
 // per step counts fully, less in proportion), nothing while it rests.

@@ -287,6 +287,9 @@ class ComplianceFilter {
 /// sure of: tau moved toward 0 by options.load_margin_sd standard deviations,
 /// 0 when it would cross zero.
 double SureLoad(const FilterOptions& options, double tau_nm, double tau_variance_nm2);
+/// SureLoad / tau (0 at tau = 0): the factor on the encoder's ∂h/∂s = K·tau
+/// that makes the compliance scale learn from the sure load alone.
+double SureLoadFraction(const FilterOptions& options, double tau_nm, double tau_variance_nm2);
 
 /// The fraction r of its wall an unloaded shaft forgets in a step of dt with
 /// this encoder increment: 1 − e^(−dt/T), weighted by min(1, |Δq|/3 counts).
