@@ -31,9 +31,6 @@ constexpr int kN = 2 * estimation::kFilterJointStates;  // 12
 constexpr int kS = estimation::kFilterJointStates;       // per joint
 using Jet8 = ceres::Jet<double, kN>;
 
-inline double ValueOf(double x) { return x; }
-inline double ValueOf(const Jet8& x) { return x.a; }
-
 // State order: (q_tip, tau, b, s, e, beta) of joint 1, then of joint 2.
 class EkfModel {
  public:

@@ -21,11 +21,11 @@
 //   tau+   = tau + noise σ_τ̇²·dt            (random walk)
 //   b+     = BacklashHysteresisStep(b, tau, delta + e, w, r, g)  (models/effects/
 //            backlash_hysteresis.h: a load only pushes b toward the wall it points at;
-//            g = S(tau/w)² enters the Jacobian as a constant; r = 1 − e^(−dt/T) while
+//            g = S(SureLoad(tau)/w)², a constant in the Jacobian; r = 1 − e^(−dt/T) while
 //            the joint moves, 0 at rest: BacklashRelax)
 //            + noise ((1 − g)·u + c·g·(1 − g)·δ²/3 + σ_pinned²·dt), variance ≤ δ²/3
 //            with the tip free (BoundBacklashVariance; not bounded held),
-//            g = S(tau/w)², u = σ_b²·dt (tip held, r = 0) or (1 − (1 − r)²)·δ²/3
+//            g as above, u = σ_b²·dt (tip held, r = 0) or (1 − (1 − r)²)·δ²/3
 //            (tip free); c = backlash_transit_noise with the tip held, 2 free
 //            (BacklashProcessVariance)
 //   s+     = s + noise σ_ṡ²·dt

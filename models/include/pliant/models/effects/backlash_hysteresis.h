@@ -10,8 +10,9 @@
 //
 //   p  = delta·S(tau/w)                      (S: smooth.h's saturation)
 //   g  = S(tau/w)²                           (how firmly the load holds the shaft)
-//   b+ = b + g·(p − b) − (1 − g)·r·b         while p − b has the sign of tau
-//   b+ = b − (1 − g)·r·b                     otherwise
+//   b+ = b + g·(p − b) − (1 − g)·r·b         while (p − b)·tau >= 0
+//   b+ = b − (1 − g)·r·b                     otherwise (the shaft is nearer
+//                                            tau's wall than p)
 //
 // so |tau| >= w puts the shaft exactly on the wall (g = 1, p = ±delta), and at
 // |tau| << w the shaft barely moves (g ≈ (15·tau/8w)²). A load only pushes:
