@@ -158,6 +158,10 @@ int main(int argc, char** argv) {
       inertia_given = true;
     } else if (a == "--accel-time" && has) {
       options.acceleration_filter_time_s = std::atof(argv[++i]);
+    } else if (a == "--load-margin" && has) {
+      options.load_margin_sd = std::atof(argv[++i]);
+    } else if (a == "--no-align") {  // the inertial torque as the samples come (it lags)
+      options.align_inertial_torque = false;
     } else if (a == "--scenario" && has) {
       scenario_path = argv[++i];
     } else {

@@ -77,13 +77,49 @@ double ResolveSd(double option, const models::ModelParameters& p, const std::str
   return std::isfinite(from_covariance) ? from_covariance : fallback;
 }
 
+// Time and encoder increments between consecutive samples: a step of no time
+// is one sample period, and at most 1 s; an increment faster than any joint
+// can move (or from a NaN) is not motion: 0, and flagged implausible.
+struct SampleClock {
+  double last_time = 0.0;
+  Eigen::Vector2d last_encoder{0.0, 0.0};
+
+  void Start(const FilterSample& s) {
+    last_time = s.time_s;
+    for (int j = 0; j < 2; ++j) {
+      last_encoder[j] = std::isfinite(s.encoder_rad[j])     ? s.encoder_rad[j]
+                        : std::isfinite(s.reference_rad[j]) ? s.reference_rad[j]
+                                                            : 0.0;
+    }
+  }
+  double Advance(const FilterSample& s, double period, Eigen::Vector2d* increment,
+                 bool implausible[2]) {
+    double dt = s.time_s - last_time;
+    if (!(dt > 0.0)) dt = period;
+    dt = std::min(dt, 1.0);
+    if (std::isfinite(s.time_s)) last_time = s.time_s;
+    for (int j = 0; j < 2; ++j) {
+      (*increment)[j] = s.encoder_rad[j] - last_encoder[j];
+      implausible[j] = std::abs((*increment)[j]) > kMaxJointSpeed * dt;
+      if (!(std::abs((*increment)[j]) <= kMaxJointSpeed * dt)) (*increment)[j] = 0.0;
+      if (std::isfinite(s.encoder_rad[j])) last_encoder[j] = s.encoder_rad[j];
+    }
+    return dt;
+  }
+};
+
 }  // namespace
 
 struct ComplianceFilter::Impl {
   Impl(const models::ModelParameters& p, const FilterOptions& o);
 
   FilterEstimate Step(const FilterSample& sample);
+  bool StepHeldSample();
   void Reset();
+
+  void AdvanceMotion(const FilterSample& sample);
+  void StepState(const FilterSample& sample);
+  FilterEstimate Output(const FilterSample& newest);
 
   void Initialise(const FilterSample& sample, double depth);
   void Predict(int j, double dt, bool tip_fixed, bool seated, double encoder_increment);
@@ -111,15 +147,25 @@ struct ComplianceFilter::Impl {
   FilterTransition transition[2];
   int rejections[2][3] = {};
   bool initialised = false;
-  double last_time = 0.0;
+  SampleClock state_clock;  // between the samples the state steps through
   double depth = 0.15;
   bool last_tip_fixed = false;
-  Eigen::Vector2d last_encoder{0.0, 0.0};
   bool implausible_jump[2] = {false, false};  // encoder moved faster than any joint can
-  MotorMotion motion[2];  // for the inertial torque in the effort
+  MotorMotion motion[2];  // for the inertial torque in the effort, from the newest sample
+  bool motion_started = false;
+  SampleClock motion_clock;  // between the newest samples
+  Eigen::Vector2d newest_step{0.0, 0.0};  // the newest sample's encoder change (0 when not motion)
+  // The inertial alignment: samples received but not yet in the state, oldest
+  // first (a fixed ring: Step never allocates).
+  static constexpr int kHeldCapacity = 64;
+  int alignment_steps = 0;
+  std::array<FilterSample, kHeldCapacity> held{};
+  int held_first = 0, held_count = 0;
+  FilterSample state_sample;      // the sample the state is at
+  FilterEstimate state_estimate;  // and its estimate
+  bool advanced = false;
   OutputStepLimiter limiter;
   double output_count_rad = 0.0;       // one encoder count
-  Eigen::Vector2d encoder_step{0.0, 0.0};  // this step's encoder change (0 when not motion)
   bool restart_output[2] = {true, true};  // the output jumps to the estimate this step
   int window_position = 0;
   int checked_joint = 0;  // whose covariance gets the full Cholesky test this step
@@ -175,6 +221,10 @@ ComplianceFilter::Impl::Impl(const models::ModelParameters& p, const FilterOptio
   }
   window_nis.assign(o.mismatch_window, 0.0);
   window_dof.assign(o.mismatch_window, 0);
+  if (o.align_inertial_torque && o.motor_inertia_kg_m2 > 0.0) {
+    const double lag_steps = MotorMotion::LagSeconds(o) / o.sample_period_s;
+    alignment_steps = std::clamp(static_cast<int>(std::lround(lag_steps)), 0, kHeldCapacity - 1);
+  }
   Reset();
 }
 
@@ -192,6 +242,9 @@ void ComplianceFilter::Impl::Reset() {
   std::fill(window_nis.begin(), window_nis.end(), 0.0);
   std::fill(window_dof.begin(), window_dof.end(), 0);
   window_position = window_count = window_dof_sum = checked_joint = 0;
+  motion_started = advanced = false;
+  held_first = held_count = 0;
+  newest_step.setZero();
   window_sum = 0.0;
 }
 
@@ -212,7 +265,6 @@ void ComplianceFilter::Impl::Initialise(const FilterSample& sample, double depth
     joint[j].covariance = PriorCovariance(options, delta[j], uncertainty[j]);
     transition[j] = FilterTransition{};
     transition[j].predicted_mean = joint[j].mean;
-    last_encoder[j] = q;
   }
   initialised = true;
 }
@@ -447,7 +499,43 @@ void ComplianceFilter::Impl::UpdateWindow(StepTally* tally) {
   window_count = std::min(window_count + 1, w);
 }
 
+// The motor's acceleration follows the newest sample; the state may run
+// alignment_steps behind it (FilterOptions::align_inertial_torque).
 FilterEstimate ComplianceFilter::Impl::Step(const FilterSample& sample) {
+  AdvanceMotion(sample);
+  advanced = false;
+  if (!initialised) {
+    StepState(sample);
+  } else {
+    held[(held_first + held_count) % kHeldCapacity] = sample;
+    ++held_count;
+    if (held_count > alignment_steps) StepHeldSample();
+  }
+  return Output(sample);
+}
+
+bool ComplianceFilter::Impl::StepHeldSample() {
+  if (held_count == 0) return false;
+  const int oldest = held_first;
+  held_first = (held_first + 1) % kHeldCapacity;
+  --held_count;
+  StepState(held[oldest]);  // the slot is not written again before the next Step
+  return true;
+}
+
+void ComplianceFilter::Impl::AdvanceMotion(const FilterSample& sample) {
+  newest_step.setZero();
+  if (!motion_started) {
+    motion_started = true;
+    motion_clock.Start(sample);
+    return;
+  }
+  bool implausible[2];
+  const double dt = motion_clock.Advance(sample, options.sample_period_s, &newest_step, implausible);
+  for (int j = 0; j < 2; ++j) motion[j].Advance(options, dt, newest_step[j]);
+}
+
+void ComplianceFilter::Impl::StepState(const FilterSample& sample) {
   StepTally tally;
   const double previous_depth = depth;
   if (std::isfinite(sample.insertion_depth_m)) {
@@ -459,34 +547,24 @@ FilterEstimate ComplianceFilter::Impl::Step(const FilterSample& sample) {
     if (depth < jp.depth_min_m || depth > jp.depth_max_m) tally.flags |= kFlagDepthOutOfRange;
   }
 
-  encoder_step.setZero();
   if (!initialised) {
     Initialise(sample, depth);
-    last_time = sample.time_s;
+    state_clock.Start(sample);
     restart_output[0] = restart_output[1] = true;
   } else {
     const bool released =
         sample.tip_fixed && last_tip_fixed && std::abs(depth - previous_depth) > kMaxHeldDepthChange;
-    double dt = sample.time_s - last_time;
-    if (!(dt > 0.0)) dt = options.sample_period_s;
-    dt = std::min(dt, 1.0);
-    if (std::isfinite(sample.time_s)) last_time = sample.time_s;
+    Eigen::Vector2d increment;
+    const double dt =
+        state_clock.Advance(sample, options.sample_period_s, &increment, implausible_jump);
     for (int j = 0; j < 2; ++j) {
-      double increment = sample.encoder_rad[j] - last_encoder[j];
-      implausible_jump[j] = std::abs(increment) > kMaxJointSpeed * dt;
-      if (!(std::abs(increment) <= kMaxJointSpeed * dt)) increment = 0.0;
-      encoder_step[j] = increment;
-      motion[j].Advance(options, dt, increment);
       if (released) {
-        Release(j, dt, increment);
+        Release(j, dt, increment[j]);
         restart_output[j] = true;
       } else {
-        Predict(j, dt, sample.tip_fixed, sample.tip_fixed && !last_tip_fixed, increment);
+        Predict(j, dt, sample.tip_fixed, sample.tip_fixed && !last_tip_fixed, increment[j]);
       }
     }
-  }
-  for (int j = 0; j < 2; ++j) {
-    if (std::isfinite(sample.encoder_rad[j])) last_encoder[j] = sample.encoder_rad[j];
   }
   last_tip_fixed = sample.tip_fixed;
 
@@ -550,7 +628,8 @@ FilterEstimate ComplianceFilter::Impl::Step(const FilterSample& sample) {
   checked_joint ^= 1;
   UpdateWindow(&tally);
 
-  FilterEstimate estimate = MakeEstimate(joint[0], joint[1], sample.encoder_rad, depth);
+  FilterEstimate& estimate = state_estimate;
+  estimate = MakeEstimate(joint[0], joint[1], sample.encoder_rad, depth);
   estimate.nis = tally.nis;
   estimate.nis_dof = tally.dof;
   estimate.window_nis = window_sum;
@@ -560,9 +639,19 @@ FilterEstimate ComplianceFilter::Impl::Step(const FilterSample& sample) {
     tally.flags |= kFlagModelMismatch;
   }
   estimate.flags = tally.flags;
+  state_sample = sample;
+  advanced = true;
+}
+
+// The state's estimate, carried to the newest sample when the state runs
+// behind it, then held to the output step limit.
+FilterEstimate ComplianceFilter::Impl::Output(const FilterSample& newest) {
+  FilterEstimate estimate = state_estimate;
+  const double newest_depth = std::isfinite(newest.insertion_depth_m) ? newest.insertion_depth_m : depth;
+  if (held_count > 0) CarryEstimate(state_sample, newest, newest_depth, &estimate);
   const Eigen::Vector2d limit =
-      encoder_step.cwiseAbs().array() + options.output_step_limit_counts * output_count_rad;
-  limiter.Apply(limit, restart_output, sample.encoder_rad, depth, &estimate);
+      newest_step.cwiseAbs().array() + options.output_step_limit_counts * output_count_rad;
+  limiter.Apply(limit, restart_output, newest.encoder_rad, newest_depth, &estimate);
   restart_output[0] = restart_output[1] = false;
   return estimate;
 }
@@ -584,6 +673,14 @@ FilterEstimate ComplianceFilter::Step(const FilterSample& sample) noexcept {
   return impl_->Step(sample);
 }
 void ComplianceFilter::Reset() noexcept { impl_->Reset(); }
+bool ComplianceFilter::StepHeldSample() noexcept {
+  impl_->advanced = false;
+  return impl_->StepHeldSample();
+}
+int ComplianceFilter::alignment_steps() const { return impl_->alignment_steps; }
+bool ComplianceFilter::advanced() const { return impl_->advanced; }
+const FilterSample& ComplianceFilter::state_sample() const { return impl_->state_sample; }
+const FilterEstimate& ComplianceFilter::state_estimate() const { return impl_->state_estimate; }
 const FilterOptions& ComplianceFilter::options() const { return impl_->options; }
 const FilterJointState& ComplianceFilter::joint_state(int joint) const {
   return impl_->joint[joint];

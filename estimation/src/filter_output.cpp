@@ -50,6 +50,19 @@ FilterEstimate MakeEstimate(const FilterJointState& joint1, const FilterJointSta
   return e;
 }
 
+void CarryEstimate(const FilterSample& from, const FilterSample& to, double depth_m,
+                   FilterEstimate* e) {
+  for (int j = 0; j < 2; ++j) {
+    if (from.tip_fixed && to.tip_fixed) continue;
+    const double moved = to.encoder_rad[j] - from.encoder_rad[j];
+    if (std::isfinite(moved)) {
+      e->corrected_rad[j] += moved;
+      e->filtered_rad[j] += moved;
+    }
+  }
+  SetTipCorrection(to.encoder_rad, depth_m, e);
+}
+
 void OutputStepLimiter::Apply(const Eigen::Vector2d& limit_rad, const bool restart[2],
                               const Eigen::Vector2d& encoder_rad, double insertion_depth_m,
                               FilterEstimate* e) {

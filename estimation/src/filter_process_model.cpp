@@ -109,6 +109,21 @@ void MotorMotion::Advance(const FilterOptions& o, double dt, double encoder_incr
   acceleration_rad_s2 += 2.0 * g_acceleration / (dt * dt) * residual;
 }
 
+double MotorMotion::LagSeconds(const FilterOptions& o) {
+  // q = t³/6 (unit jerk): the truth is θ̈ = t, the estimate t − lag once the
+  // start has faded (θ^k below 1e-16 after 37 T).
+  const double dt = o.sample_period_s;
+  const int steps = static_cast<int>(std::ceil(40.0 * o.acceleration_filter_time_s / dt)) + 1;
+  MotorMotion motion;
+  double previous = 0.0;
+  for (int k = 1; k <= steps; ++k) {
+    const double t = k * dt, q = t * t * t / 6.0;
+    motion.Advance(o, dt, q - previous);
+    previous = q;
+  }
+  return steps * dt - motion.acceleration_rad_s2;
+}
+
 double MotorMotion::InertialTorque(const FilterOptions& o) const {
   return std::clamp(o.motor_inertia_kg_m2 * acceleration_rad_s2, -o.effort_limit_nm,
                     o.effort_limit_nm);

@@ -1,5 +1,7 @@
 #include "pliant/estimation/filter_smoother.h"
 
+#include <cmath>
+
 #include <Eigen/Cholesky>
 
 namespace pliant::estimation {
@@ -39,11 +41,21 @@ void FilterSmoother::Reserve(std::size_t samples) { steps_.reserve(samples); }
 
 FilterEstimate FilterSmoother::Add(const FilterSample& sample) {
   const FilterEstimate estimate = filter_.Step(sample);
+  if (filter_.advanced()) Record();
+  smoothed_ = false;
+  return estimate;
+}
+
+// One record per sample the filter's state has reached (with motor inertia
+// it runs alignment_steps() behind Add's newest).
+void FilterSmoother::Record() {
   StepRecord record;
   for (int j = 0; j < 2; ++j) {
     record.joint[j].state = filter_.joint_state(j);
     record.joint[j].transition = filter_.transition(j);
   }
+  const FilterSample& sample = filter_.state_sample();
+  const FilterEstimate& estimate = filter_.state_estimate();
   record.encoder_rad = sample.encoder_rad;
   record.depth_m = std::isfinite(sample.insertion_depth_m) || steps_.empty()
                        ? sample.insertion_depth_m
@@ -52,11 +64,10 @@ FilterEstimate FilterSmoother::Add(const FilterSample& sample) {
   record.nis_dof = estimate.nis_dof;
   record.flags = estimate.flags;
   steps_.push_back(record);
-  smoothed_ = false;
-  return estimate;
 }
 
 void FilterSmoother::Smooth() {
+  while (filter_.StepHeldSample()) Record();  // the log's last samples
   if (smoothed_ || steps_.size() < 2) {
     smoothed_ = true;
     return;

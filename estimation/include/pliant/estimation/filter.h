@@ -110,6 +110,17 @@ struct FilterOptions {
   /// arm (experiments JointDynamics) has 0.08.
   double motor_inertia_kg_m2 = 0.0;
   double acceleration_filter_time_s = 0.004;
+  /// With motor inertia (J > 0), run the filter's state that many samples
+  /// behind the newest one that the fitted acceleration's lag (under a
+  /// constant jerk, AccelerationLagSeconds: 11.7 ms, 17 samples, at the
+  /// defaults) lines up with the effort it is taken out of; Step() carries the
+  /// estimate forward to the newest sample (CarryEstimate). Why: the effort
+  /// holds J·θ̈ now, the fit knows θ̈ of ~12 ms ago; in the clamped-beam sweeps
+  /// (8 Hz arm oscillation after each step) that misfit was 2–3 times the
+  /// effort noise, correlated over a move, and dragged the compliance scale
+  /// and the held tip (docs/filter.md, "Aligning the inertial torque").
+  /// false: process each sample as it comes (the inertial torque then lags).
+  bool align_inertial_torque = true;
   /// Relative error of the deflection model, as encoder variance (this × K·tau)².
   double deflection_model_error = 0.06;
   /// A load counts only beyond this many of its own standard deviations
@@ -278,6 +289,23 @@ class ComplianceFilter {
   /// Joint j's transition in the last Step.
   const FilterTransition& transition(int joint) const;
 
+  /// Samples the state runs behind Step's newest sample: the inertial
+  /// torque's alignment (FilterOptions::align_inertial_torque), 0 without
+  /// motor inertia. Step's estimate is always of its own sample, carried
+  /// forward from the state's (CarryEstimate); joint_state() and transition()
+  /// are of state_sample().
+  int alignment_steps() const;
+  /// Whether the last Step (or StepHeldSample) advanced the state by a sample.
+  bool advanced() const;
+  /// The sample the state is at, and its estimate before carrying and the
+  /// output step limit (what the smoother records).
+  const FilterSample& state_sample() const;
+  const FilterEstimate& state_estimate() const;
+  /// Processes the oldest sample the alignment still holds back, with the
+  /// acceleration as it is now; false when none is left. For the end of a
+  /// log (the smoother); a control loop never needs it.
+  bool StepHeldSample() noexcept;
+
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
@@ -340,6 +368,9 @@ void SeatingBound(FilterStateMatrix* covariance, double weight);
 /// two 10 ms low-pass stages it replaces, which were 20 ms late).
 /// Allocation-free, constant time, no throw.
 struct MotorMotion {
+  /// How late the acceleration is under a constant jerk, s, for these
+  /// options' T and sample period (run on a cubic angle until settled).
+  static double LagSeconds(const FilterOptions& options);
   double velocity_rad_s = 0.0;
   double acceleration_rad_s2 = 0.0;
   double position_offset_rad = 0.0;  ///< fitted angle − last encoder reading
@@ -359,6 +390,16 @@ double ParameterStandardDeviation(const models::ModelParameters& parameters,
 /// filter and the smoother: corrected angles, covariance, tip correction.
 FilterEstimate MakeEstimate(const FilterJointState& joint1, const FilterJointState& joint2,
                             const Eigen::Vector2d& encoder_rad, double insertion_depth_m);
+
+/// An estimate of the state at sample `from` carried to the newer sample `to`
+/// (the inertial alignment): a joint whose tip is held at both stays where it
+/// is; otherwise the tip moves with the encoder (the shaft's own change over
+/// the alignment's ~12 ms is left to the state's next update: σ_free, the
+/// filter's process noise of a free tip, is a bound for the filter, not for
+/// this shift, and would give a free tip NEES 0.2 instead of 2). The tip
+/// correction is recomputed at `to`'s encoders and `depth_m`.
+void CarryEstimate(const FilterSample& from, const FilterSample& to, double depth_m,
+                   FilterEstimate* estimate);
 
 /// The corrected angle a control loop sees: it follows the estimate but moves
 /// at most `limit_rad[j]` in a step (FilterOptions::output_step_limit_counts

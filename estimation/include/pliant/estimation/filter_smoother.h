@@ -31,9 +31,12 @@ class FilterSmoother {
   /// Filters one sample and records it; returns the filter's estimate.
   FilterEstimate Add(const FilterSample& sample);
 
-  /// The backward pass. After it, Smoothed(k) is the smoothed estimate.
+  /// The backward pass (after the filter's held-back samples, if any). After
+  /// it, Estimate(k) is the smoothed estimate of every added sample.
   void Smooth();
 
+  /// Samples recorded: all of them after Smooth(); before, up to
+  /// alignment_steps() fewer than added.
   std::size_t size() const { return steps_.size(); }
   /// The estimate at sample k: filtered before Smooth(), smoothed after. The
   /// NIS and flags are always the filter's (they describe the measurements).
@@ -52,6 +55,8 @@ class FilterSmoother {
     int nis_dof;
     std::uint32_t flags;
   };
+
+  void Record();
 
   ComplianceFilter filter_;
   std::vector<StepRecord> steps_;
