@@ -57,7 +57,7 @@ bool IsHealthy(const pliant::estimation::FilterStateMatrix& p) {
 TEST(FilterRealTime, StepNeverAllocates) {
   if (!PLIANT_COUNTS_ALLOCATIONS) GTEST_SKIP() << "AddressSanitizer replaces malloc";
   const auto p = models::testing::PaperParameters();
-  const FilterOptions o;
+  FilterOptions o;
   testing::SyntheticOptions so;
   so.duration_s = 4.0;
   auto run = testing::MakeSyntheticRun(p, o, so);
@@ -69,12 +69,20 @@ TEST(FilterRealTime, StepNeverAllocates) {
     if (k % 97 == 0) s.effort_nm[1] = 5.0;
     if (k >= 3000 && k < 3100) s.encoder_rad[1] += 0.1;
   }
+  // With motor inertia too: the alignment's held samples live in a ring
+  // sized at construction.
   ComplianceFilter filter(p, o);
+  o.motor_inertia_kg_m2 = 0.08;
+  ComplianceFilter aligned(p, o);
+  ASSERT_GT(aligned.alignment_steps(), 0);
   // The test's own first malloc (gtest, locale) happens outside the window.
   const long before = allocations;
   counting = true;
   std::uint32_t seen = 0;
   for (const auto& s : run.samples) seen |= filter.Step(s).flags;
+  for (const auto& s : run.samples) aligned.Step(s);
+  while (aligned.StepHeldSample()) {
+  }
   counting = false;
   EXPECT_EQ(allocations - before, 0);
   EXPECT_TRUE(seen & kFlagRejected);
