@@ -110,6 +110,8 @@ int main(int argc, char** argv) {
       options.effort_offset_rate_nm = std::atof(argv[++i]);
     } else if (a == "--output-limit" && i + 1 < argc) {
       options.output_step_limit_counts = std::atof(argv[++i]);
+    } else if (a == "--no-align") {  // the inertial torque as the samples come (it lags)
+      options.align_inertial_torque = false;
     } else if (a == "--accel-time" && i + 1 < argc) {
       options.acceleration_filter_time_s = std::atof(argv[++i]);
     } else if (a == "--slow-speed" && i + 1 < argc) {

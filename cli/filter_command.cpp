@@ -1,5 +1,6 @@
 // pliant filter: the online EKF over a log (streamed), or the RTS smoother
 // over the whole log (--smooth), written atomically with the filter's columns.
+#include <cstdint>
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -116,6 +117,10 @@ Command AddFilterCommand(CLI::App& app) {
                   "Motor-side inertia J of joints 1-2, kg·m²: J·θ̈ is taken out of the effort "
                   "while the tip is held (0: off; the simulator's arm has 0.08)")
       ->capture_default_str();
+  sub->add_flag_function(
+      "--no-inertia-alignment", [&f](std::int64_t) { f.align_inertial_torque = false; },
+      "With --motor-inertia: take J·θ̈ out of each effort as it comes, where the acceleration "
+      "fit is ~12 ms late, instead of running the state that far behind (docs/filter.md)");
   // Both joints get the same prior from the command line; NaN keeps "from the
   // parameters' covariance, else the default" (filter.h).
   sub->add_option_function<double>(
