@@ -119,6 +119,8 @@ struct FilterOptions {
   /// (8 Hz arm oscillation after each step) that misfit was 2–3 times the
   /// effort noise, correlated over a move, and dragged the compliance scale
   /// and the held tip (docs/filter.md, "Aligning the inertial torque").
+  /// The count of samples is the lag over sample_period_s: a log at another
+  /// rate than the PSM's 1.5 kHz needs that period set to line up.
   /// false: process each sample as it comes (the inertial torque then lags).
   bool align_inertial_torque = true;
   /// Relative error of the deflection model, as encoder variance (this × K·tau)².
