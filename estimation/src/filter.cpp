@@ -12,44 +12,14 @@
 #include <ceres/jet.h>
 
 #include "chi_squared.h"
+#include "filter_impl.h"
 #include "pliant/models/effects/backlash_hysteresis.h"
 #include "pliant/models/effects/compliance.h"
 
 namespace pliant::estimation {
 namespace {
 
-// One slot per state of a joint block, (q_tip, tau, b, s, e, beta). Both joints are
-// evaluated in one pass with each joint's inputs seeded in its own block's
-// slots: no effect on the filter's path couples the joints, so each output's
-// derivatives are with respect to its own joint's states.
-using StateJet = ceres::Jet<double, kFilterJointStates>;
-constexpr int kTip = kStateTip, kTorque = kStateTorque, kBacklash = kStateBacklash,
-              kScale = kStateScale, kClearance = kStateClearance, kOffset = kStateEffortOffset;
-using Vector = FilterStateVector;
-using Matrix = FilterStateMatrix;
-enum Channel { kEncoderChannel = 0, kEffortChannel = 1, kReferenceChannel = 2 };
-constexpr int kMaxScalarsPerStep = 6;   // 2 encoders, 2 efforts, 2 references
-constexpr double kMaxJointSpeed = 5.0;  // rad/s: a larger encoder increment is not motion
-constexpr double kMinScale = 0.05, kMaxScale = 20.0;
-// A held tip cannot change its insertion: a larger depth change between two
-// tip-fixed samples means it was released and held again elsewhere (a log of
-// hold means, which skips the transit between clamps).
-constexpr double kMaxHeldDepthChange = 2e-4;  // m
-constexpr int kExactQuantileDof = 1000;  // Wilson–Hilferty beyond (relative error < 1e-5)
-
-struct StepTally {
-  double nis = 0.0;         // accepted scalars
-  int dof = 0;
-  double window_nis = 0.0;  // accepted + rejected (capped), for the mismatch test
-  int window_dof = 0;
-  std::uint32_t flags = 0;
-};
-
-// What the filter does not know about the instrument, per joint: σ_δ, σ_β.
-struct InstrumentUncertainty {
-  double clearance_sd_rad = 0.0;
-  double effort_offset_sd_nm = 0.0;
-};
+using namespace filter_internal;
 
 // Joint j's prior covariance: diag(σ_tip0², σ_τ0², (δ² + σ_δ²)/3, σ_s², σ_δ², σ_β²);
 // b uniform on ±(δ + e). The floors keep P positive definite when σ = 0.
@@ -77,102 +47,9 @@ double ResolveSd(double option, const models::ModelParameters& p, const std::str
   return std::isfinite(from_covariance) ? from_covariance : fallback;
 }
 
-// Time and encoder increments between consecutive samples: a step of no time
-// is one sample period, and at most 1 s; an increment faster than any joint
-// can move (or from a NaN) is not motion: 0, and flagged implausible.
-struct SampleClock {
-  double last_time = 0.0;
-  Eigen::Vector2d last_encoder{0.0, 0.0};
-
-  void Start(const FilterSample& s) {
-    last_time = s.time_s;
-    for (int j = 0; j < 2; ++j) {
-      last_encoder[j] = std::isfinite(s.encoder_rad[j])     ? s.encoder_rad[j]
-                        : std::isfinite(s.reference_rad[j]) ? s.reference_rad[j]
-                                                            : 0.0;
-    }
-  }
-  double Advance(const FilterSample& s, double period, Eigen::Vector2d* increment,
-                 bool implausible[2]) {
-    double dt = s.time_s - last_time;
-    if (!(dt > 0.0)) dt = period;
-    dt = std::min(dt, 1.0);
-    if (std::isfinite(s.time_s)) last_time = s.time_s;
-    for (int j = 0; j < 2; ++j) {
-      (*increment)[j] = s.encoder_rad[j] - last_encoder[j];
-      implausible[j] = std::abs((*increment)[j]) > kMaxJointSpeed * dt;
-      if (!(std::abs((*increment)[j]) <= kMaxJointSpeed * dt)) (*increment)[j] = 0.0;
-      if (std::isfinite(s.encoder_rad[j])) last_encoder[j] = s.encoder_rad[j];
-    }
-    return dt;
-  }
-};
-
 }  // namespace
 
-struct ComplianceFilter::Impl {
-  Impl(const models::ModelParameters& p, const FilterOptions& o);
-
-  FilterEstimate Step(const FilterSample& sample);
-  bool StepHeldSample();
-  void Reset();
-
-  void AdvanceMotion(const FilterSample& sample);
-  void StepState(const FilterSample& sample);
-  FilterEstimate Output(const FilterSample& newest);
-
-  void Initialise(const FilterSample& sample, double depth);
-  void Predict(int j, double dt, bool tip_fixed, bool seated, double encoder_increment);
-  void Release(int j, double dt, double encoder_increment);
-  void EncoderModel(double depth, Eigen::Vector2d* predicted, Vector* h) const;
-  void ScalarUpdate(int j, Channel channel, const Vector& h, double innovation,
-                    double variance, StepTally* tally, bool implausible = false,
-                    bool consider_instrument = false);
-  void Repair(int j, const FilterSample& sample, bool full_check, StepTally* tally);
-  void UpdateWindow(StepTally* tally);
-
-  models::ModelParameters parameters;
-  FilterOptions options;
-  models::ComplianceEffect compliance;
-  std::array<StateJet, 8> compliance_coefficients;  // constants (zero derivatives)
-  double delta[2];
-  double width[2];
-  InstrumentUncertainty uncertainty[2];
-  double gate;
-  std::vector<double> window_threshold;  // by total dof in the window
-  std::vector<double> window_nis;        // ring buffer, one entry per sample
-  std::vector<int> window_dof;
-
-  FilterJointState joint[2];
-  FilterTransition transition[2];
-  int rejections[2][3] = {};
-  bool initialised = false;
-  SampleClock state_clock;  // between the samples the state steps through
-  double depth = 0.15;
-  bool last_tip_fixed = false;
-  bool implausible_jump[2] = {false, false};  // encoder moved faster than any joint can
-  MotorMotion motion[2];  // for the inertial torque in the effort, from the newest sample
-  bool motion_started = false;
-  SampleClock motion_clock;  // between the newest samples
-  Eigen::Vector2d newest_step{0.0, 0.0};  // the newest sample's encoder change (0 when not motion)
-  // The inertial alignment: samples received but not yet in the state, oldest
-  // first (a fixed ring: Step never allocates).
-  static constexpr int kHeldCapacity = 64;
-  int alignment_steps = 0;
-  std::array<FilterSample, kHeldCapacity> held{};
-  int held_first = 0, held_count = 0;
-  FilterSample state_sample;      // the sample the state is at
-  FilterEstimate state_estimate;  // and its estimate
-  bool advanced = false;
-  OutputStepLimiter limiter;
-  double output_count_rad = 0.0;       // one encoder count
-  bool restart_output[2] = {true, true};  // the output jumps to the estimate this step
-  int window_position = 0;
-  int checked_joint = 0;  // whose covariance gets the full Cholesky test this step
-  int window_count = 0;
-  double window_sum = 0.0;
-  int window_dof_sum = 0;
-};
+using namespace filter_internal;
 
 ComplianceFilter::Impl::Impl(const models::ModelParameters& p, const FilterOptions& o)
     : parameters(p), options(o), compliance(p.joints[0], p.joints[1]) {
@@ -499,42 +376,6 @@ void ComplianceFilter::Impl::UpdateWindow(StepTally* tally) {
   window_count = std::min(window_count + 1, w);
 }
 
-// The motor's acceleration follows the newest sample; the state may run
-// alignment_steps behind it (FilterOptions::align_inertial_torque).
-FilterEstimate ComplianceFilter::Impl::Step(const FilterSample& sample) {
-  AdvanceMotion(sample);
-  advanced = false;
-  if (!initialised) {
-    StepState(sample);
-  } else {
-    held[(held_first + held_count) % kHeldCapacity] = sample;
-    ++held_count;
-    if (held_count > alignment_steps) StepHeldSample();
-  }
-  return Output(sample);
-}
-
-bool ComplianceFilter::Impl::StepHeldSample() {
-  if (held_count == 0) return false;
-  const int oldest = held_first;
-  held_first = (held_first + 1) % kHeldCapacity;
-  --held_count;
-  StepState(held[oldest]);  // the slot is not written again before the next Step
-  return true;
-}
-
-void ComplianceFilter::Impl::AdvanceMotion(const FilterSample& sample) {
-  newest_step.setZero();
-  if (!motion_started) {
-    motion_started = true;
-    motion_clock.Start(sample);
-    return;
-  }
-  bool implausible[2];
-  const double dt = motion_clock.Advance(sample, options.sample_period_s, &newest_step, implausible);
-  for (int j = 0; j < 2; ++j) motion[j].Advance(options, dt, newest_step[j]);
-}
-
 void ComplianceFilter::Impl::StepState(const FilterSample& sample) {
   StepTally tally;
   const double previous_depth = depth;
@@ -641,19 +482,6 @@ void ComplianceFilter::Impl::StepState(const FilterSample& sample) {
   estimate.flags = tally.flags;
   state_sample = sample;
   advanced = true;
-}
-
-// The state's estimate, carried to the newest sample when the state runs
-// behind it, then held to the output step limit.
-FilterEstimate ComplianceFilter::Impl::Output(const FilterSample& newest) {
-  FilterEstimate estimate = state_estimate;
-  const double newest_depth = std::isfinite(newest.insertion_depth_m) ? newest.insertion_depth_m : depth;
-  if (held_count > 0) CarryEstimate(state_sample, newest, newest_depth, &estimate);
-  const Eigen::Vector2d limit =
-      newest_step.cwiseAbs().array() + options.output_step_limit_counts * output_count_rad;
-  limiter.Apply(limit, restart_output, newest.encoder_rad, newest_depth, &estimate);
-  restart_output[0] = restart_output[1] = false;
-  return estimate;
 }
 
 ComplianceFilter::ComplianceFilter(const models::ModelParameters& parameters,
