@@ -115,7 +115,8 @@ Command AddFilterCommand(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--motor-inertia", f.motor_inertia_kg_m2,
                   "Motor-side inertia J of joints 1-2, kg·m²: J·θ̈ is taken out of the effort "
-                  "while the tip is held (0: off; the simulator's arm has 0.08)")
+                  "while the tip is held (0: off; the simulator's arm has 0.08). For logs at the "
+                  "full 1.5 kHz rate: θ̈ cannot be estimated from a subsampled log")
       ->capture_default_str();
   sub->add_flag_function(
       "--no-inertia-alignment", [&f](std::int64_t) { f.align_inertial_torque = false; },
