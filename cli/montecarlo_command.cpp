@@ -33,11 +33,14 @@ void PrintSummary(const nlohmann::json& s, const std::string& dir) {
   }
   for (const auto& [name, h] : s["honesty"].items()) {
     std::printf("  %-8s NEES mean %.3f (95 %% band [%.3f, %.3f]), NEES <= chi2(2, 0.95): %.1f %%, "
-                "95 %% coverage: %.1f %% (picked sample), %.1f %% (held samples)\n",
+                "95 %% coverage: %.1f %% (picked sample), %.1f %% (held samples: j1 %.1f %%, "
+                "j2 %.1f %%)\n",
                 name.c_str(), h["nees_mean"].get<double>(), h["nees_band_95"][0].get<double>(),
                 h["nees_band_95"][1].get<double>(), 100.0 * h["nees_within_chi2_95"].get<double>(),
                 100.0 * h["coverage_95_picked_sample"].get<double>(),
-                100.0 * h["coverage_95_held_samples"].get<double>());
+                100.0 * h["coverage_95_held_samples"].get<double>(),
+                100.0 * h["coverage_95_held_samples_by_joint"][0].get<double>(),
+                100.0 * h["coverage_95_held_samples_by_joint"][1].get<double>());
   }
 }
 

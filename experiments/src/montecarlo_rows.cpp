@@ -14,7 +14,7 @@
 namespace pliant::experiments {
 namespace {
 
-constexpr int kDoubles = kSampledQuantities + kCorrectionMethods + 2 + 2;  // + nees, coverage
+constexpr int kDoubles = kSampledQuantities + kCorrectionMethods + 2 + 2 + 4;  // + nees, coverage, by joint
 constexpr int kFields = 2 + kDoubles + 2 + 1;  // trial, seed, doubles, covered×2, held
 
 std::string FirstLine(const Study& study) {
@@ -39,6 +39,7 @@ std::string TrialCsvHeader() {
     header += std::string(",tip_error_") + CorrectionMethodName(m) + "_mm";
   }
   header += ",nees_filter,nees_smoother,coverage_filter,coverage_smoother";
+  header += ",coverage_filter_j1,coverage_filter_j2,coverage_smoother_j1,coverage_smoother_j2";
   header += ",covered_filter,covered_smoother,held_samples\n";
   return header;
 }
@@ -54,6 +55,9 @@ std::string FormatTrialRow(const TrialResult& r) {
   for (double x : r.tip_error_mm) add(x);
   for (double x : r.nees) add(x);
   for (double x : r.coverage_fraction) add(x);
+  for (const auto& estimator : r.joint_coverage_fraction) {
+    for (double x : estimator) add(x);
+  }
   row += "," + std::to_string(r.covered[0]) + "," + std::to_string(r.covered[1]) + "," +
          std::to_string(r.held_samples) + "\n";
   return row;
@@ -82,6 +86,9 @@ std::optional<TrialResult> ParseTrialRow(std::string_view line) {
   for (double& x : r.tip_error_mm) x = *d++;
   for (double& x : r.nees) x = *d++;
   for (double& x : r.coverage_fraction) x = *d++;
+  for (auto& estimator : r.joint_coverage_fraction) {
+    for (double& x : estimator) x = *d++;
+  }
   return r;
 }
 

@@ -143,12 +143,13 @@ json SummariseStudy(const Study& study, const std::vector<TrialResult>& rows) {
   const double nees95 = boost::math::quantile(boost::math::chi_squared(2.0), 0.95);
   json honesty = json::object();
   for (int e = 0; e < 2; ++e) {
-    double sum = 0.0, covered = 0.0, fraction = 0.0, inside = 0.0;
+    double sum = 0.0, covered = 0.0, fraction = 0.0, inside = 0.0, by_joint[2] = {0.0, 0.0};
     for (const auto& r : rows) {
       sum += r.nees[e];
       inside += r.nees[e] <= nees95;
       covered += r.covered[e];
       fraction += r.coverage_fraction[e];
+      for (int j = 0; j < 2; ++j) by_joint[j] += r.joint_coverage_fraction[e][j];
     }
     const double mean = sum / n;
     honesty[e == 0 ? "filter" : "smoother"] = {
@@ -157,7 +158,8 @@ json SummariseStudy(const Study& study, const std::vector<TrialResult>& rows) {
         {"nees_in_band", band.Contains(mean)},
         {"nees_within_chi2_95", inside / n},
         {"coverage_95_picked_sample", covered / (2.0 * n)},
-        {"coverage_95_held_samples", fraction / n}};
+        {"coverage_95_held_samples", fraction / n},
+        {"coverage_95_held_samples_by_joint", {by_joint[0] / n, by_joint[1] / n}}};
   }
   summary["honesty"] = honesty;
   return summary;

@@ -238,6 +238,7 @@ TrialResult RunTrial(const Study& study, int trial) {
     out.nees[e] = picked_sample[e].MeanNees();  // one sample: its NEES
     out.covered[e] = int(picked_sample[e].covered[0] + picked_sample[e].covered[1]);
     out.coverage_fraction[e] = every_kth[e].PooledCoverageFraction();
+    for (int j = 0; j < 2; ++j) out.joint_coverage_fraction[e][j] = every_kth[e].CoverageFraction(j);
   }
   return out;
 }

@@ -29,6 +29,10 @@ TrialResult Row(int k) {
   r.covered[1] = k % 2;
   r.coverage_fraction[0] = 0.95;
   r.coverage_fraction[1] = 1.0 / 7.0;
+  r.joint_coverage_fraction[0][0] = 0.9;
+  r.joint_coverage_fraction[0][1] = 1.0;
+  r.joint_coverage_fraction[1][0] = 1.0 / 7.0;
+  r.joint_coverage_fraction[1][1] = k < 50 ? 0.0 : 2.0 / 7.0;
   r.held_samples = 1000 + k;
   return r;
 }
@@ -42,6 +46,8 @@ TEST(TrialRow, ReadsBackBitForBit) {
   EXPECT_EQ(std::memcmp(back->draw.values, r.draw.values, sizeof r.draw.values), 0);
   EXPECT_EQ(std::memcmp(back->tip_error_mm, r.tip_error_mm, sizeof r.tip_error_mm), 0);
   EXPECT_EQ(back->coverage_fraction[1], 1.0 / 7.0);
+  EXPECT_EQ(std::memcmp(back->joint_coverage_fraction, r.joint_coverage_fraction,
+                        sizeof r.joint_coverage_fraction), 0);
   EXPECT_EQ(back->covered[1], 1);
   EXPECT_EQ(back->held_samples, 1041);
 }
@@ -116,6 +122,11 @@ TEST(Summary, PercentilesNeesAndCoverageMatchHandValues) {
   EXPECT_NEAR(m["nees_within_chi2_95"].get<double>(), 0.9, 1e-12);
   EXPECT_NEAR(m["coverage_95_picked_sample"].get<double>(), 0.25, 1e-12);
   EXPECT_NEAR(m["coverage_95_held_samples"].get<double>(), 1.0 / 7.0, 1e-12);
+  // Per joint: the mean over trials of each joint's fraction.
+  EXPECT_NEAR(f["coverage_95_held_samples_by_joint"][0].get<double>(), 0.9, 1e-12);
+  EXPECT_NEAR(f["coverage_95_held_samples_by_joint"][1].get<double>(), 1.0, 1e-12);
+  EXPECT_NEAR(m["coverage_95_held_samples_by_joint"][0].get<double>(), 1.0 / 7.0, 1e-12);
+  EXPECT_NEAR(m["coverage_95_held_samples_by_joint"][1].get<double>(), 1.0 / 7.0, 1e-12);
   EXPECT_EQ(s.dump().find("wall"), std::string::npos);  // no timing in the summary
 }
 
