@@ -17,9 +17,10 @@
 #include "pliant/models/effects/compliance.h"
 
 namespace pliant::estimation {
-namespace {
 
 using namespace filter_internal;
+
+namespace {
 
 // Joint j's prior covariance: diag(σ_tip0², σ_τ0², (δ² + σ_δ²)/3, σ_s², σ_δ², σ_β²);
 // b uniform on ±(δ + e). The floors keep P positive definite when σ = 0.
@@ -48,8 +49,6 @@ double ResolveSd(double option, const models::ModelParameters& p, const std::str
 }
 
 }  // namespace
-
-using namespace filter_internal;
 
 ComplianceFilter::Impl::Impl(const models::ModelParameters& p, const FilterOptions& o)
     : parameters(p), options(o), compliance(p.joints[0], p.joints[1]) {

@@ -112,7 +112,7 @@ struct FilterOptions {
   double acceleration_filter_time_s = 0.004;
   /// With motor inertia (J > 0), run the filter's state that many samples
   /// behind the newest one that the fitted acceleration's lag (under a
-  /// constant jerk, AccelerationLagSeconds: 11.7 ms, 17 samples, at the
+  /// constant jerk, MotorMotion::LagSeconds: 11.7 ms, 18 samples, at the
   /// defaults) lines up with the effort it is taken out of; Step() carries the
   /// estimate forward to the newest sample (CarryEstimate). Why: the effort
   /// holds J·θ̈ now, the fit knows θ̈ of ~12 ms ago; in the clamped-beam sweeps
