@@ -12,6 +12,9 @@
 //       [--first-seed N] [--paper-pushes] [--centred-shaft] [--per-run] [--scenario FILE]
 //       [--trace RUN]
 //
+// The held rows are also split per joint by where the truth's shaft is
+// (inside its clearance, at a wall, loaded past it): ShaftStateBreakdown.
+//
 // The motor inertia is the scenario's (JointDynamics) unless --inertia is given;
 // --first-seed checks the tuned options on seeds they were not tuned on.
 //
@@ -175,6 +178,7 @@ int main(int argc, char** argv) {
     const double speeds[] = {0.02, 0.05};
     estimation::ConsistencyTally one_per_run, one_held_per_run, all, held, free_tip;
     bench::LoadBreakdown by_load;
+    bench::ShaftStateBreakdown by_shaft;
     const auto base = experiments::ReadScenario(scenario_path, {"hidden_effects={}"});
     std::mt19937_64 pick(7);
     long rows_total = 0;
@@ -257,6 +261,11 @@ int main(int argc, char** argv) {
         if (s.tip_fixed) {
           run_held.Add(error, e.covariance_rad2);
           by_load.AddRow(load_ratio, error, e.covariance_rad2);
+          for (int j = 0; j < 2; ++j) {
+            const double deflection = j ? v[c.q2] - v[c.q2_true] : v[c.q1] - v[c.q1_true];
+            by_shaft.Add(j, deflection / parameters.joints[j].backlash_rad, error[j],
+                         e.covariance_rad2(j, j));
+          }
         }
         all.Add(error, e.covariance_rad2);
         (s.tip_fixed ? held : free_tip).Add(error, e.covariance_rad2);
@@ -291,6 +300,7 @@ int main(int argc, char** argv) {
     bench::PrintTally("tip held", held, true);
     bench::PrintTally("tip free", free_tip, true);
     by_load.Print();
+    by_shaft.Print();
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 1;

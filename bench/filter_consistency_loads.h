@@ -120,4 +120,44 @@ class LoadBreakdown {
   int runs_[kBuckets] = {};
 };
 
+/// Held rows per joint, grouped by where the truth's shaft is: inside its
+/// clearance (|q_enc − q_true| < 0.9·δ), at a wall (0.9–1 δ), or loaded past
+/// it (> δ: elastic deflection). Why: a pooled coverage per joint mixes two
+/// different error shapes. An unloaded shaft sits anywhere in ±δ, a uniform
+/// error whose honest variance δ²/3 puts ±1.96σ at ±1.13δ: those rows are
+/// covered 100 % with z² ≈ 1, so a joint that is often unloaded over-covers
+/// while its NEES is right. A loaded joint's error is where the model's
+/// gaps show (docs/validation.md, Part 4, "Coverage by joint").
+class ShaftStateBreakdown {
+ public:
+  void Add(int joint, double deflection_over_clearance, double error_rad, double variance_rad2) {
+    const double d = std::abs(deflection_over_clearance);
+    Cell& c = cells_[joint][d < 0.9 ? 0 : (d <= 1.0 ? 1 : 2)];
+    const double z2 = error_rad * error_rad / variance_rad2;
+    ++c.count;
+    c.covered += z2 <= 1.959963984540054 * 1.959963984540054;
+    c.z2_sum += z2;
+  }
+  void Print() const {
+    static const char* const kNames[3] = {"inside clearance", "at a wall", "loaded past it"};
+    std::printf("  tip held, by where each joint's shaft truly is (|q_enc - q_true| / delta):\n");
+    for (int j = 0; j < 2; ++j) {
+      for (int k = 0; k < 3; ++k) {
+        const Cell& c = cells_[j][k];
+        if (c.count == 0) continue;
+        std::printf("  j%d %-16s %6ld rows   mean z^2 %6.3f   coverage %5.1f %%\n", j + 1,
+                    kNames[k], c.count, c.z2_sum / double(c.count),
+                    100.0 * double(c.covered) / double(c.count));
+      }
+    }
+  }
+
+ private:
+  struct Cell {
+    long count = 0, covered = 0;
+    double z2_sum = 0.0;
+  };
+  Cell cells_[2][3];
+};
+
 }  // namespace pliant::bench
