@@ -127,6 +127,7 @@ class EkfModel {
   }
   const estimation::FilterOptions& options() const { return options_; }
   double delta(int j) const { return delta_[j]; }
+  double width(int j) const { return width_[j]; }
 
  private:
   models::ModelParameters parameters_;
@@ -254,9 +255,9 @@ class DenseEkf {
       const double deflection = o.deflection_model_error * h(j, kS * j + 3);  // error × K·tau
       r(j, j) = o.encoder_noise_rad * o.encoder_noise_rad + deflection * deflection;
       r(2 + j, 2 + j) = o.effort_noise_nm * o.effort_noise_nm;
-      // s is taught by the sure load, as in the filter.
+      // s is taught by the sure load while it holds the shaft, as in the filter.
       const int t = kS * j + 1;
-      h(j, kS * j + 3) *= estimation::SureLoadFraction(o, x_[t], p_(t, t));
+      h(j, kS * j + 3) *= estimation::ScaleLearningFraction(o, x_[t], p_(t, t), model_.width(j));
     }
     const typename Types::M84 ph = p_ * h.transpose();
     const typename Types::M44 innovation_cov = h * ph + r;

@@ -410,12 +410,13 @@ void ComplianceFilter::Impl::StepState(const FilterSample& sample) {
 
   // s is taught by the load the filter is sure of: ∂h/∂s = K·tau scaled to
   // SureLoad (K·tau is linear in tau), so that a load within its noise is not
-  // a regressor whose noise biases s toward 0. Taken at the prediction, as the
-  // dense baselines, which update all channels at once, do.
+  // a regressor whose noise biases s toward 0; and only while that load holds
+  // the shaft on its wall (ScaleLearningFraction). Taken at the prediction, as
+  // the dense baselines, which update all channels at once, do.
   double sure_fraction[2];
   for (int j = 0; j < 2; ++j) {
-    sure_fraction[j] = SureLoadFraction(options, joint[j].mean[kTorque],
-                                        joint[j].covariance(kTorque, kTorque));
+    sure_fraction[j] = ScaleLearningFraction(options, joint[j].mean[kTorque],
+                                             joint[j].covariance(kTorque, kTorque), width[j]);
   }
   // Efforts: tau_meas − tau0(q_enc, L) = tau + beta (tau0 is evaluated at the
   // measured angle, an input, so its row is the unit vectors of tau and beta).

@@ -88,6 +88,11 @@ bool FilterOptions::IsValid(std::string* error) const {
     return Fail(error, "FilterOptions::load_margin_sd must be finite and >= 0 — standard "
                        "deviations of the load estimate, e.g. 2, or 0 to count every load");
   }
+  if (!(std::isfinite(scale_hold_exponent) && scale_hold_exponent >= 0.0)) {
+    return Fail(error, "FilterOptions::scale_hold_exponent must be finite and >= 0 — a power "
+                       "of the load's hold on the wall, e.g. 4, or 0 to let every sure load "
+                       "teach the compliance scale");
+  }
   if (!(std::isfinite(motor_inertia_kg_m2) && motor_inertia_kg_m2 >= 0.0)) {
     return Fail(error, "FilterOptions::motor_inertia_kg_m2 must be finite and >= 0 — the motor "
                        "inertia reflected at the joint in kg·m², or 0 to read the whole effort "

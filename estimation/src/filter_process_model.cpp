@@ -6,6 +6,7 @@
 #include <string>
 
 #include "pliant/estimation/filter.h"
+#include "pliant/models/effects/backlash_hysteresis.h"
 
 namespace pliant::estimation {
 
@@ -28,6 +29,15 @@ double SureLoad(const FilterOptions& o, double tau_nm, double tau_variance_nm2) 
 
 double SureLoadFraction(const FilterOptions& o, double tau_nm, double tau_variance_nm2) {
   return tau_nm != 0.0 ? SureLoad(o, tau_nm, tau_variance_nm2) / tau_nm : 0.0;
+}
+
+double ScaleLearningFraction(const FilterOptions& o, double tau_nm, double tau_variance_nm2,
+                             double width_nm) {
+  const double sure = SureLoad(o, tau_nm, tau_variance_nm2);
+  if (sure == 0.0) return 0.0;
+  const double hold = models::BacklashHold(sure, width_nm);
+  // On the wall (hold 1, the usual loaded step) no pow is needed: Step() is timed.
+  return sure / tau_nm * (hold >= 1.0 ? 1.0 : std::pow(hold, o.scale_hold_exponent));
 }
 
 // The fraction of its wall an unloaded shaft forgets in one step: with time

@@ -1,0 +1,93 @@
+// The compliance scale learns only from loads that hold the shaft on its wall
+// (FilterOptions::scale_hold_exponent). A real shaft meets its wall as soon as
+// a load pushes it; the model's shaft reaches it only at the dead-zone width
+// w. Below w the encoder sits beyond what the model's pull allows, and a
+// filter that lets s learn there reads the gap as compliance.
+#include <cmath>
+#include <random>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "../support/paper_parameters.h"
+#include "pliant/estimation/filter.h"
+#include "pliant/models/parameters.h"
+
+namespace pliant::estimation {
+namespace {
+
+using models::testing::PaperParameters;
+
+// Joint 1 ramped in 0.5 s to `load_fraction`·w and held there for 3 s, its
+// shaft on the wall all along (q_enc = tip + δ + K·tau, s = 1: the
+// simulator's shaft, which meets its wall at once); joint 2 unloaded.
+// Returns the filter's s at the end.
+double ScaleAfterHold(double hold_exponent, double load_fraction) {
+  const auto p = PaperParameters();
+  FilterOptions o;
+  o.scale_hold_exponent = hold_exponent;
+  ComplianceFilter filter(p, o);
+  const double depth = 0.15, dt = 1.0 / 1500.0, tip = 0.1;
+  const double width = std::max(p.joints[0].deadzone_width_nm,
+                                o.backlash_width_noise_multiple * o.effort_noise_nm);
+  const double compliance = models::ComplianceAt(p.joints[0], depth);
+  const double count = std::sqrt(12.0) * o.encoder_noise_rad;
+  std::mt19937_64 rng(5);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  FilterEstimate e;
+  for (int k = 0; k < int(3.5 / dt); ++k) {
+    const double t = k * dt;
+    const double tau = load_fraction * width * std::min(1.0, t / 0.5);
+    FilterSample s;
+    s.time_s = t;
+    s.insertion_depth_m = depth;
+    s.tip_fixed = true;
+    const double q1 = tip + p.joints[0].backlash_rad + compliance * tau;
+    s.encoder_rad = {count * std::round(q1 / count), -0.2};
+    for (int j = 0; j < 2; ++j) {
+      s.effort_nm[j] = models::BiasTorqueAt(p.joints[j], s.encoder_rad[j], depth) +
+                       (j == 0 ? tau : 0.0) + o.effort_noise_nm * normal(rng);
+    }
+    e = filter.Step(s);
+  }
+  return e.compliance_scale[0];
+}
+
+// Measured (seed 5), s after the hold, exponent 0 / 4: at 0.5 w 0.980 /
+// 0.997; at 3 w 1.0009 / 1.0007.
+TEST(FilterScaleHold, HalfTheWidthDoesNotTeachTheScale) {
+  EXPECT_GT(std::abs(ScaleAfterHold(0.0, 0.5) - 1.0), 0.01);
+  EXPECT_LT(std::abs(ScaleAfterHold(FilterOptions().scale_hold_exponent, 0.5) - 1.0), 0.005);
+}
+
+TEST(FilterScaleHold, ThreeWidthsStillTeachIt) {
+  EXPECT_NEAR(ScaleAfterHold(FilterOptions().scale_hold_exponent, 3.0), 1.0, 0.002);
+}
+
+// A known defect, kept as the next fix's target (run with
+// --gtest_also_run_disabled_tests): held at w to 1.2 w, s falls to 0.63–0.71
+// whatever the exponent (exponent 0 / 4 — w: 0.666 / 0.706, 1.2 w: 0.634 /
+// 0.682, 0.8 w: 0.928 / 0.912, 1.5 w: 0.924 / 0.927, 2 w: 0.98). There the sure
+// load is just short of w, the hold g ≈ 0.99, and the pull's transit noise
+// keeps b's σ at ≈ 0.12 δ against the wall; the mean is kept inside ±(δ + e)
+// one side only, and the innovation that clipping discards walks the held tip
+// and s along the direction a steady load cannot tell apart
+// (docs/validation.md, Part 4, "Coverage by joint").
+TEST(FilterScaleHold, DISABLED_AtTheWidthTheScaleHolds) {
+  EXPECT_NEAR(ScaleAfterHold(FilterOptions().scale_hold_exponent, 1.0), 1.0, 0.05);
+}
+
+TEST(FilterScaleHold, ExponentMustBeFiniteAndNonNegative) {
+  FilterOptions o;
+  std::string error;
+  o.scale_hold_exponent = -1.0;
+  EXPECT_FALSE(o.IsValid(&error));
+  EXPECT_NE(error.find("scale_hold_exponent"), std::string::npos);
+  o.scale_hold_exponent = std::nan("");
+  EXPECT_FALSE(o.IsValid(&error));
+  o.scale_hold_exponent = 0.0;
+  EXPECT_TRUE(o.IsValid(&error));
+}
+
+}  // namespace
+}  // namespace pliant::estimation
