@@ -27,10 +27,6 @@ double SureLoad(const FilterOptions& o, double tau_nm, double tau_variance_nm2) 
   return std::copysign(std::max(0.0, std::abs(tau_nm) - margin), tau_nm);
 }
 
-double SureLoadFraction(const FilterOptions& o, double tau_nm, double tau_variance_nm2) {
-  return tau_nm != 0.0 ? SureLoad(o, tau_nm, tau_variance_nm2) / tau_nm : 0.0;
-}
-
 double ScaleLearningFraction(const FilterOptions& o, double tau_nm, double tau_variance_nm2,
                              double width_nm) {
   const double sure = SureLoad(o, tau_nm, tau_variance_nm2);

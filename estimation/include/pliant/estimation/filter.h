@@ -335,12 +335,10 @@ class ComplianceFilter {
 /// sure of: tau moved toward 0 by options.load_margin_sd standard deviations,
 /// 0 when it would cross zero.
 double SureLoad(const FilterOptions& options, double tau_nm, double tau_variance_nm2);
-/// SureLoad / tau (0 at tau = 0): the factor on the encoder's ∂h/∂s = K·tau
-/// that makes the compliance scale learn from the sure load alone.
-double SureLoadFraction(const FilterOptions& options, double tau_nm, double tau_variance_nm2);
-/// The factor on the encoder's ∂h/∂s: SureLoadFraction × BacklashHold(SureLoad,
-/// w)^scale_hold_exponent, w the joint's dead-zone width (N·m): s learns from
-/// the sure load, and only while that load holds the shaft on its wall.
+/// The factor on the encoder's ∂h/∂s = K·tau: SureLoad / tau (0 at tau = 0) ×
+/// BacklashHold(SureLoad, w)^scale_hold_exponent, w the joint's dead-zone
+/// width (N·m): s learns from the sure load alone, and only while that load
+/// holds the shaft on its wall.
 double ScaleLearningFraction(const FilterOptions& options, double tau_nm, double tau_variance_nm2,
                              double width_nm);
 
