@@ -49,8 +49,7 @@ class EkfModel {
       sd_beta_[j] = std::isfinite(o.effort_offset_sd_nm[j]) ? o.effort_offset_sd_nm[j]
                     : std::isfinite(sd_beta)                ? sd_beta
                                                             : o.kDefaultEffortOffsetSdNm;
-      width_[j] = std::max(p.joints[j].deadzone_width_nm,
-                           o.backlash_width_noise_multiple * o.effort_noise_nm);
+      width_[j] = estimation::FilterDeadZoneWidth(o, p.joints[j]);
     }
   }
 

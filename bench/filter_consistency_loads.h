@@ -18,6 +18,7 @@
 
 #include <Eigen/Core>
 #include <boost/math/constants/constants.hpp>
+#include <boost/math/distributions/normal.hpp>
 
 #include "pliant/estimation/consistency.h"
 #include "pliant/experiments/study.h"
@@ -133,9 +134,10 @@ class ShaftStateBreakdown {
   void Add(int joint, double deflection_over_clearance, double error_rad, double variance_rad2) {
     const double d = std::abs(deflection_over_clearance);
     Cell& c = cells_[joint][d < 0.9 ? 0 : (d <= 1.0 ? 1 : 2)];
+    static const double z95 = boost::math::quantile(boost::math::normal(), 0.975);
     const double z2 = error_rad * error_rad / variance_rad2;
     ++c.count;
-    c.covered += z2 <= 1.959963984540054 * 1.959963984540054;
+    c.covered += z2 <= z95 * z95;
     c.z2_sum += z2;
   }
   void Print() const {

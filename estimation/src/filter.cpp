@@ -68,14 +68,8 @@ ComplianceFilter::Impl::Impl(const models::ModelParameters& p, const FilterOptio
     uncertainty[j].effort_offset_sd_nm =
         ResolveSd(o.effort_offset_sd_nm[j], p, prefix + "bias_torque.coefficients[0]",
                   FilterOptions::kDefaultEffortOffsetSdNm);
-    // The width over which the filter lets the load pin the shaft: the
-    // parameters' dead-zone width, but never below what the effort noise can
-    // resolve (an identified physical width of 0.02 N·m under 0.01 N·m of
-    // noise would let noise throw the shaft from wall to wall).
-    const double width_nm = joint_parameters.deadzone_width_nm > 0.0
-                                ? joint_parameters.deadzone_width_nm
-                                : std::max(joint_parameters.tau_min_nm, 1e-3);
-    width[j] = std::max(width_nm, o.backlash_width_noise_multiple * o.effort_noise_nm);
+    // The width over which the filter lets the load pin the shaft.
+    width[j] = FilterDeadZoneWidth(o, joint_parameters);
   }
   depth = 0.5 * (p.joints[0].depth_min_m + p.joints[0].depth_max_m);
   gate = internal::ChiSquaredQuantile(1.0, o.gate_probability);

@@ -27,6 +27,12 @@ double SureLoad(const FilterOptions& o, double tau_nm, double tau_variance_nm2) 
   return std::copysign(std::max(0.0, std::abs(tau_nm) - margin), tau_nm);
 }
 
+double FilterDeadZoneWidth(const FilterOptions& o, const models::JointParameters& joint) {
+  const double width_nm =
+      joint.deadzone_width_nm > 0.0 ? joint.deadzone_width_nm : std::max(joint.tau_min_nm, 1e-3);
+  return std::max(width_nm, o.backlash_width_noise_multiple * o.effort_noise_nm);
+}
+
 double ScaleLearningFraction(const FilterOptions& o, double tau_nm, double tau_variance_nm2,
                              double width_nm) {
   const double sure = SureLoad(o, tau_nm, tau_variance_nm2);

@@ -28,8 +28,7 @@ double ScaleAfterHold(double hold_exponent, double load_fraction) {
   o.scale_hold_exponent = hold_exponent;
   ComplianceFilter filter(p, o);
   const double depth = 0.15, dt = 1.0 / 1500.0, tip = 0.1;
-  const double width = std::max(p.joints[0].deadzone_width_nm,
-                                o.backlash_width_noise_multiple * o.effort_noise_nm);
+  const double width = FilterDeadZoneWidth(o, p.joints[0]);
   const double compliance = models::ComplianceAt(p.joints[0], depth);
   const double count = std::sqrt(12.0) * o.encoder_noise_rad;
   std::mt19937_64 rng(5);

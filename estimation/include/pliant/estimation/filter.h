@@ -335,6 +335,12 @@ class ComplianceFilter {
 /// sure of: tau moved toward 0 by options.load_margin_sd standard deviations,
 /// 0 when it would cross zero.
 double SureLoad(const FilterOptions& options, double tau_nm, double tau_variance_nm2);
+/// The dead-zone width w (N·m) the filter uses for a joint: the parameters'
+/// deadzone_width_nm (tau_min_nm when that is 0), never below
+/// options.backlash_width_noise_multiple × the effort noise — an identified
+/// width of 0.02 N·m under 0.01 N·m of noise would let noise throw the shaft
+/// from wall to wall.
+double FilterDeadZoneWidth(const FilterOptions& options, const models::JointParameters& joint);
 /// The factor on the encoder's ∂h/∂s = K·tau: SureLoad / tau (0 at tau = 0) ×
 /// BacklashHold(SureLoad, w)^scale_hold_exponent, w the joint's dead-zone
 /// width (N·m): s learns from the sure load alone, and only while that load
