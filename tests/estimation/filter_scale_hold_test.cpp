@@ -4,63 +4,18 @@
 // w. Below w the encoder sits beyond what the model's pull allows, and a
 // filter that lets s learn there reads the gap as compliance.
 #include <cmath>
-#include <random>
 #include <string>
 
 #include <gtest/gtest.h>
 
-#include "../support/paper_parameters.h"
+#include "../support/steady_hold.h"
 #include "pliant/estimation/filter.h"
-#include "pliant/models/parameters.h"
 
 namespace pliant::estimation {
 namespace {
 
-using models::testing::PaperParameters;
-
-// Joint 1 ramped in 0.5 s to `load_fraction`·w and held there for `hold_s`,
-// its shaft on the wall all along (q_enc = tip + δ + K·tau, s = 1: the
-// simulator's shaft, which meets its wall at once); joint 2 unloaded. The
-// efforts carry `effort_noise_scale` times the filter's effort noise.
-struct ScaleTrace {
-  double after_1s;  // s 0.5 s into the hold
-  double at_end;    // s at the end
-};
-
-ScaleTrace TraceScaleOverHold(double hold_exponent, double load_fraction, double hold_s,
-                              double effort_noise_scale) {
-  const auto p = PaperParameters();
-  FilterOptions o;
-  o.scale_hold_exponent = hold_exponent;
-  ComplianceFilter filter(p, o);
-  const double depth = 0.15, dt = 1.0 / 1500.0, tip = 0.1;
-  const double width = FilterDeadZoneWidth(o, p.joints[0]);
-  const double compliance = models::ComplianceAt(p.joints[0], depth);
-  const double count = std::sqrt(12.0) * o.encoder_noise_rad;
-  std::mt19937_64 rng(5);
-  std::normal_distribution<double> normal(0.0, 1.0);
-  ScaleTrace trace{};
-  const int one_second = 1500;
-  for (int k = 0; k < int((0.5 + hold_s) / dt); ++k) {
-    const double t = k * dt;
-    const double tau = load_fraction * width * std::min(1.0, t / 0.5);
-    FilterSample s;
-    s.time_s = t;
-    s.insertion_depth_m = depth;
-    s.tip_fixed = true;
-    const double q1 = tip + p.joints[0].backlash_rad + compliance * tau;
-    s.encoder_rad = {count * std::round(q1 / count), -0.2};
-    for (int j = 0; j < 2; ++j) {
-      s.effort_nm[j] = models::BiasTorqueAt(p.joints[j], s.encoder_rad[j], depth) +
-                       (j == 0 ? tau : 0.0) +
-                       effort_noise_scale * o.effort_noise_nm * normal(rng);
-    }
-    const double scale = filter.Step(s).compliance_scale[0];
-    if (k == one_second) trace.after_1s = scale;
-    trace.at_end = scale;
-  }
-  return trace;
-}
+using testing::ScaleTrace;
+using testing::TraceScaleOverHold;
 
 // s after a 3 s hold with the filter's own effort noise.
 double ScaleAfterHold(double hold_exponent, double load_fraction) {
