@@ -3,7 +3,7 @@
 // a steady load of m·w, its tip held for 19 s, the truth's s = 1. Printed with
 // the filter's own effort noise and without any: the drift is the EKF's
 // errors-in-variables bias on s·K·tau, so it goes with the noise.
-// Run: build/bench/filter_steady_hold_bench   (about 1 s)
+// Run: build/bench/filter_steady_hold_bench   (0.2 s)
 #include <cstdio>
 
 #include "../tests/support/steady_hold.h"
