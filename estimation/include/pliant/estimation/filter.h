@@ -150,7 +150,10 @@ struct FilterOptions {
   /// the clearance error went to −δ and the tip 4 mm off; with this gate it
   /// stays under 1 mm. 4 (with ε = 0.075): the identify study's NEES 3.14 →
   /// 2.05, inside its band (docs/validation.md, Part 4, "Coverage by joint").
-  /// 0: every sure load teaches s.
+  /// 0: every sure load teaches s. What it does not stop: through a long
+  /// steady hold at up to about 2 w, s still drifts toward 0 (the EKF's
+  /// errors-in-variables bias on s·K·tau; docs/filter.md, "Known limitation";
+  /// build/bench/filter_steady_hold_bench).
   double scale_hold_exponent = 4.0;
   // Priors.
   double compliance_scale_sd = 0.1;       ///< s starts at 1 ± this
