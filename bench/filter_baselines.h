@@ -96,7 +96,12 @@ class EkfModel {
     for (int j = 0; j < 2; ++j) {
       const double sat = models::SmoothSaturation(sure_load_[j] / width_[j]);
       q[kS * j] = tip_fixed ? 0.0 : o.free_tip_rate_rad * o.free_tip_rate_rad * dt;
-      q[kS * j + 1] = o.external_torque_rate_nm * o.external_torque_rate_nm * dt;
+      q[kS * j + 1] = tip_fixed ? estimation::HeldLoadProcessVariance(
+                                      o, dt, increment_peak_[j],
+                                      x[kS * j + 3] * Compliance(j, depth_),
+                                      inertial_torque_[j],
+                                      models::BacklashHold(sure_load_[j], width_[j]))
+                                : o.external_torque_rate_nm * o.external_torque_rate_nm * dt;
       const double relax = tip_fixed ? 0.0 : Relax(j, increment[j]);
       q[kS * j + 2] =
           estimation::BacklashProcessVariance(o, dt, tip_fixed, relax, sat, delta_[j]);
@@ -111,8 +116,13 @@ class EkfModel {
     const double noise = options_.effort_noise_nm * options_.effort_noise_nm;
     return delta_[j] * models::SmoothSaturation(estimation::SureLoad(options_, tau, noise) / width_[j]);
   }
-  /// The loads the filter is sure of (SureLoad), set before each prediction.
+  /// The loads the filter is sure of (SureLoad), the motors' inertial torques
+  /// (N·m) and recent increments (rad), and the insertion depth (m), set
+  /// before each prediction.
   double sure_load_[2] = {0.0, 0.0};
+  double inertial_torque_[2] = {0.0, 0.0};
+  double increment_peak_[2] = {0.0, 0.0};
+  double depth_ = 0.15;
   double Compliance(int j, double depth) const {
     return models::ComplianceAt(parameters_.joints[j], depth);
   }
@@ -216,7 +226,10 @@ class DenseEkf {
     for (int j = 0; j < 2; ++j) {
       const int t = kS * j + 1;
       model_.sure_load_[j] = estimation::SureLoad(model_.options(), x_[t], p_(t, t));
+      model_.inertial_torque_[j] = motion_[j].InertialTorque(model_.options());
+      model_.increment_peak_[j] = motion_[j].increment_peak_rad;
     }
+    model_.depth_ = s.insertion_depth_m;
     model_.Process(x, s.tip_fixed, increment, dt, next);
     Matrix f(kN, kN);
     for (int i = 0; i < kN; ++i) {

@@ -12,17 +12,23 @@ int main() {
   using pliant::estimation::FilterOptions;
   using pliant::estimation::testing::TraceScaleOverHold;
   const double hold_s = 19.0;
-  const double exponent = FilterOptions().scale_hold_exponent;
+  const FilterOptions bounded;  // the defaults
+  FilterOptions free_load;
+  free_load.bound_held_load_rate = false;
   std::printf("joint 1 held %.0f s at a steady load of m*w (w = the filter's dead-zone width), "
               "truth s = 1\n",
               hold_s);
-  std::printf("  %5s   %-34s   %s\n", "m", "effort noise as the filter's", "no effort noise");
-  std::printf("  %5s   %8s %8s %14s   %8s\n", "", "s", "sd(s)", "tip err, counts", "s");
+  std::printf("  %5s   %-34s   %-26s   %s\n", "m", "defaults (held load's rate bounded)",
+              "bound off (sigma_tau_dot)", "defaults, no effort noise");
+  std::printf("  %5s   %8s %8s %16s   %8s %16s   %8s\n", "", "s", "sd(s)", "tip err, counts",
+              "s", "tip err, counts", "s");
   for (double m : {1.0, 1.5, 2.0, 3.0, 5.0}) {
-    const auto noisy = TraceScaleOverHold(exponent, m, hold_s, 1.0);
-    const auto quiet = TraceScaleOverHold(exponent, m, hold_s, 0.0);
-    std::printf("  %5.1f   %8.4f %8.4f %14.0f   %8.4f\n", m, noisy.at_end, noisy.sd_at_end,
-                noisy.tip_error_counts, quiet.at_end);
+    const auto noisy = TraceScaleOverHold(bounded, m, hold_s, 1.0);
+    const auto unbounded = TraceScaleOverHold(free_load, m, hold_s, 1.0);
+    const auto quiet = TraceScaleOverHold(bounded, m, hold_s, 0.0);
+    std::printf("  %5.1f   %8.4f %8.4f %16.0f   %8.4f %16.0f   %8.4f\n", m, noisy.at_end,
+                noisy.sd_at_end, noisy.tip_error_counts, unbounded.at_end,
+                unbounded.tip_error_counts, quiet.at_end);
   }
   return 0;
 }

@@ -196,7 +196,13 @@ void ComplianceFilter::Impl::Predict(int j, double dt, bool tip_fixed, bool seat
 
   Vector q;
   q[kTip] = tip_fixed ? 0.0 : o.free_tip_rate_rad * o.free_tip_rate_rad * dt;
-  q[kTorque] = o.external_torque_rate_nm * o.external_torque_rate_nm * dt;
+  // A held tip's load moves only as the motor bends the shaft (HeldLoadProcessVariance).
+  q[kTorque] =
+      tip_fixed ? HeldLoadProcessVariance(
+                      o, dt, motion[j].increment_peak_rad,
+                      s.mean[kScale] * ComplianceAtDepth(j),
+                      motion[j].InertialTorque(o), hold)
+                : o.external_torque_rate_nm * o.external_torque_rate_nm * dt;
   q[kBacklash] = bound.process_variance;
   q[kScale] = o.compliance_scale_rate * o.compliance_scale_rate * dt;
   q[kClearance] = 0.0;

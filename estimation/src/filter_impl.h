@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include <ceres/jet.h>
@@ -110,6 +111,14 @@ struct ComplianceFilter::Impl {
                     bool consider_instrument = false);
   void Repair(int j, const FilterSample& sample, bool full_check, StepTally* tally);
   void UpdateWindow(StepTally* tally);
+  /// K_j(L) at the current depth, rad/N·m, evaluated again only when the depth changes.
+  double ComplianceAtDepth(int j) {
+    if (depth != compliance_depth) {
+      compliance_depth = depth;
+      for (int i = 0; i < 2; ++i) compliance_at_depth[i] = models::ComplianceAt(parameters.joints[i], depth);
+    }
+    return compliance_at_depth[j];
+  }
 
   models::ModelParameters parameters;
   FilterOptions options;
@@ -129,6 +138,8 @@ struct ComplianceFilter::Impl {
   bool initialised = false;
   SampleClock state_clock;  // between the samples the state steps through
   double depth = 0.15;
+  double compliance_depth = std::numeric_limits<double>::quiet_NaN();  // NaN: not yet evaluated
+  double compliance_at_depth[2] = {0.0, 0.0};
   bool last_tip_fixed = false;
   bool implausible_jump[2] = {false, false};  // encoder moved faster than any joint can
   MotorMotion motion[2];  // for the inertial torque in the effort, from the newest sample

@@ -47,12 +47,22 @@ bool FilterOptions::IsValid(std::string* error) const {
       {"effort_limit_nm", effort_limit_nm, "N·m"},
       {"backlash_width_noise_multiple", backlash_width_noise_multiple, "multiples of σ_effort"},
       {"acceleration_filter_time_s", acceleration_filter_time_s, "s"},
+      {"held_load_inertial_time_s", held_load_inertial_time_s, "s"},
+      {"held_load_motion_window_s", held_load_motion_window_s, "s"},
   };
   for (const auto& p : positives) {
     if (!(std::isfinite(p.value) && p.value > 0.0)) {
       return Fail(error, std::string("FilterOptions::") + p.name + " = " + std::to_string(p.value) +
                              " must be finite and > 0 — give it in " + p.unit);
     }
+  }
+  if (!(std::isfinite(held_load_rest_rate_nm) && held_load_rest_rate_nm >= 0.0)) {
+    return Fail(error, "FilterOptions::held_load_rest_rate_nm must be finite and >= 0 — N·m/√s "
+                       "a held load drifts with the motor still, e.g. 0.01");
+  }
+  if (!(std::isfinite(held_load_motion_margin) && held_load_motion_margin >= 1.0)) {
+    return Fail(error, "FilterOptions::held_load_motion_margin must be finite and >= 1 — a "
+                       "margin on the load the motor's increment can add, e.g. 2");
   }
   if (!(std::isfinite(compliance_scale_rate) && compliance_scale_rate >= 0.0)) {
     return Fail(error, "FilterOptions::compliance_scale_rate must be finite and >= 0 — use 0 "

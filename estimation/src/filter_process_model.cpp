@@ -42,6 +42,21 @@ double ScaleLearningFraction(const FilterOptions& o, double tau_nm, double tau_v
   return sure / tau_nm * (hold >= 1.0 ? 1.0 : std::pow(hold, o.scale_hold_exponent));
 }
 
+double HeldLoadProcessVariance(const FilterOptions& o, double dt, double encoder_increment,
+                               double compliance_rad_per_nm, double inertial_torque_nm,
+                               double hold) {
+  const double free_rate = o.external_torque_rate_nm * o.external_torque_rate_nm * dt;
+  if (!o.bound_held_load_rate || !(hold > 0.0)) return free_rate;
+  const double moved =
+      o.held_load_motion_margin * encoder_increment / std::max(compliance_rad_per_nm, 1e-6);
+  const double bound = o.held_load_rest_rate_nm * o.held_load_rest_rate_nm * dt + moved * moved +
+                       inertial_torque_nm * inertial_torque_nm * dt / o.held_load_inertial_time_s;
+  // Off the wall the encoder moves b as well as the bend, and b may move
+  // either way as the load changes: only the held part of the load is bounded.
+  const double g = std::min(hold, 1.0);
+  return g * std::min(free_rate, bound) + (1.0 - g) * free_rate;
+}
+
 // The fraction of its wall an unloaded shaft forgets in one step: with time
 // constant T while the joint moves (an encoder increment of 3 counts or more
 // per step counts fully, less in proportion), nothing while it rests.
@@ -119,6 +134,11 @@ void MotorMotion::Advance(const FilterOptions& o, double dt, double encoder_incr
   position_offset_rad = -theta * theta * theta * residual;  // prediction + (1 − θ³)·residual
   velocity_rad_s += acceleration_rad_s2 * dt + g_velocity / dt * residual;
   acceleration_rad_s2 += 2.0 * g_acceleration / (dt * dt) * residual;
+  if (dt != peak_fade_dt_s) {  // the period rarely changes: exp once, not every step
+    peak_fade_dt_s = dt;
+    peak_fade = std::exp(-dt / o.held_load_motion_window_s);
+  }
+  increment_peak_rad = std::max(std::abs(encoder_increment), increment_peak_rad * peak_fade);
 }
 
 double MotorMotion::LagSeconds(const FilterOptions& o) {

@@ -24,11 +24,9 @@ struct ScaleTrace {
 // its shaft on the wall all along (q_enc = tip + δ + K·tau, s = 1: the
 // simulator's shaft, which meets its wall at once); joint 2 unloaded. The
 // efforts carry `effort_noise_scale` times the filter's effort noise (seed 5).
-inline ScaleTrace TraceScaleOverHold(double hold_exponent, double load_fraction, double hold_s,
+inline ScaleTrace TraceScaleOverHold(const FilterOptions& o, double load_fraction, double hold_s,
                                      double effort_noise_scale) {
   const auto p = models::PaperParameters();
-  FilterOptions o;
-  o.scale_hold_exponent = hold_exponent;
   ComplianceFilter filter(p, o);
   const double depth = 0.15, dt = 1.0 / 1500.0, tip = 0.1;
   const double width = FilterDeadZoneWidth(o, p.joints[0]);
