@@ -122,6 +122,10 @@ Command AddFilterCommand(CLI::App& app) {
       "--no-inertia-alignment", [&f](std::int64_t) { f.align_inertial_torque = false; },
       "With --motor-inertia: take J·θ̈ out of each effort as it comes, where the acceleration "
       "fit is ~12 ms late, instead of running the state that far behind (docs/filter.md)");
+  sub->add_flag_function(
+      "--no-held-load-bound", [&f](std::int64_t) { f.bound_held_load_rate = false; },
+      "Let a held tip's load change as freely as a free tip's (σ_τ̇) instead of no faster than "
+      "the motor bends the shaft (docs/filter.md)");
   // Both joints get the same prior from the command line; NaN keeps "from the
   // parameters' covariance, else the default" (filter.h).
   sub->add_option_function<double>(

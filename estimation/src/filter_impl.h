@@ -115,7 +115,9 @@ struct ComplianceFilter::Impl {
   double ComplianceAtDepth(int j) {
     if (depth != compliance_depth) {
       compliance_depth = depth;
-      for (int i = 0; i < 2; ++i) compliance_at_depth[i] = models::ComplianceAt(parameters.joints[i], depth);
+      for (int i = 0; i < 2; ++i) {
+        compliance_at_depth[i] = models::ComplianceAt(parameters.joints[i], depth);
+      }
     }
     return compliance_at_depth[j];
   }

@@ -48,6 +48,23 @@ TEST(FilterCommand, SmoothsWhenAsked) {
   EXPECT_NE(r.out.find("smoother             RMS"), std::string::npos) << r.out;
 }
 
+// --no-held-load-bound reaches the filter: the held rows' q1_sd differ from
+// the default's (the load's process variance is another), the rest of the run not.
+TEST(FilterCommand, TheHeldLoadBoundCanBeTurnedOff) {
+  const auto dir = FreshDirectory("filter_command_held_load");
+  const std::string args = " --params " + kSource + "/data/paper.json " + kSource +
+                           "/data/divot_push.csv -o ";
+  const auto bounded = (dir / "bounded.csv").string(), free = (dir / "free.csv").string();
+  ASSERT_EQ(RunCommand(kCli + " filter" + args + bounded, dir).exit_code, 0);
+  const auto r = RunCommand(kCli + " filter --no-held-load-bound" + args + free, dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto a = io::ReadLog(bounded).Column("q1_sd"), b = io::ReadLog(free).Column("q1_sd");
+  ASSERT_EQ(a.size(), b.size());
+  std::size_t differ = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) differ += a[i] != b[i];
+  EXPECT_GT(differ, a.size() / 10);
+}
+
 TEST(FilterCommand, BadInputExitsTwoAndWritesNothing) {
   const auto dir = FreshDirectory("filter_command_bad");
   const auto out = dir / "out.csv";

@@ -89,10 +89,11 @@ struct FilterOptions {
   /// true: while the load holds the shaft on its wall, the load's process
   /// variance is at most σ_rest²·dt + (m·Δq_enc/(s·K(L)))² + (J·θ̈)²·dt/T_a
   /// (HeldLoadProcessVariance), never above σ_τ̇²·dt; inside the clearance
-  /// the encoder moves b too, which may go either way, and σ_τ̇ holds. Why: at a steady hold, a load free to follow the effort
-  /// noise made that noise a regressor of s, which drifted toward 0 (s 0.65 after 19 s
-  /// at 1.5 w; with the bound 0.98; docs/filter.md, "A long steady hold").
-  /// false: σ_τ̇ alone, as a free tip's load always has.
+  /// the encoder moves b too, which may go either way, and σ_τ̇ holds. Why:
+  /// through a steady hold, a load free to follow the effort noise made that
+  /// noise a regressor of s, which drifted toward 0 (s 0.658 after 19 s at
+  /// 1.5 w; with the bound 0.978; docs/filter.md, "A held load moves only as
+  /// the motor bends the shaft"). false: σ_τ̇ alone, as a free tip's load has.
   bool bound_held_load_rate = true;
   double held_load_rest_rate_nm = 0.01;   ///< σ_rest, N·m/√s: tissue relaxation, a slow slip
   /// m ≥ 1: the margin on the motor's increment for the error of s·K(L).
@@ -101,8 +102,8 @@ struct FilterOptions {
   /// this time constant (MotorMotion::increment_peak_rad), s. Why not the
   /// sample's own: a variance set from the very increment the encoder update
   /// then reads counts that increment twice; on logs whose load is a random
-  /// walk (the filter's own process model) that taught s from noise (NEES 4.1
-  /// vs 2.0 over 100 runs, tests/estimation/filter_test.cpp).
+  /// walk (the filter's own process model) that taught s from noise (NEES
+  /// 4.07 against 2.29 over 100 runs, band 1.63–2.41; filter_test.cpp).
   double held_load_motion_window_s = 0.02;
   /// T_a, s: lets the load absorb, over this time, a misread of the inertial
   /// torque J·θ̈ as large as that torque (the fitted θ̈ lags the effort's).
@@ -382,8 +383,9 @@ double ScaleLearningFraction(const FilterOptions& options, double tau_nm, double
 /// options.bound_held_load_rate: with q_b = min(σ_τ̇²·dt, σ_rest²·dt +
 /// (m·Δq/(s·K))² + (J·θ̈)²·dt/T_a), it is (1 − g)·σ_τ̇²·dt + g·q_b for the hold
 /// g ∈ [0, 1] of the load on its wall (BacklashHold), the motor's recent
-/// increment Δq (rad, MotorMotion::increment_peak_rad), compliance s·K(L) (rad/N·m, floored at 10⁻⁶) and inertial torque
-/// J·θ̈ (N·m). σ_τ̇²·dt with the option off.
+/// increment Δq (rad, MotorMotion::increment_peak_rad), compliance s·K(L)
+/// (rad/N·m, floored at 10⁻⁶) and inertial torque J·θ̈ (N·m). σ_τ̇²·dt with
+/// the option off.
 double HeldLoadProcessVariance(const FilterOptions& options, double dt, double encoder_increment,
                                double compliance_rad_per_nm, double inertial_torque_nm,
                                double hold);
