@@ -2,7 +2,8 @@
 // side by side with the memoryless corrections, in one run:
 //
 //   build/bench/filter_accuracy_bench --params P.json LOG.csv [--free] [--smooth]
-//       [--slow-speed 0.02] [--per-segment] [--trace FROM TO] [--motor-inertia KG_M2] [--accel-time S]
+//       [--slow-speed 0.02] [--per-segment] [--trace FROM TO] [--motor-inertia KG_M2]
+//       [--shaft-damping NM_S_PER_RAD] [--accel-time S]
 //       [--clearance-sd RAD] [--offset-sd NM] [--offset-rate NM_S]   (default: the parameters' covariance, else filter.h's defaults)
 //
 // prints, against q1_true/q2_true, the RMS and largest tip error (mm, through
@@ -18,7 +19,8 @@
 // --output-limit COUNTS sets FilterOptions::output_step_limit_counts (inf: off).
 // --free drops the tip_fixed column (the filter is not told the tip is held).
 // --motor-inertia J: the filter subtracts J·θ̈ from the effort (the simulator's
-// arm has 0.08 kg·m²; FilterOptions' default is 0).
+// arm has 0.08 kg·m²; FilterOptions' default is 0). --shaft-damping c_s: and
+// the shaft's damping with the tip held (the simulator's instruments: 0.02).
 // Not a Google Benchmark: an accuracy study, run by hand (docs/validation.md).
 #include <algorithm>
 #include <cmath>
@@ -78,7 +80,7 @@ std::map<int, double> SegmentSpeeds(const io::LogHeader& header) {
 int Usage() {
   std::fprintf(stderr,
                "usage: filter_accuracy_bench --params P.json LOG.csv [--free] [--smooth] "
-               "[--slow-speed RAD_S] [--per-segment] [--trace FROM TO] [--motor-inertia KG_M2] [--accel-time S] [--output-limit COUNTS] [--clearance-sd RAD] [--offset-sd NM] [--offset-rate NM_S]\n");
+               "[--slow-speed RAD_S] [--per-segment] [--trace FROM TO] [--motor-inertia KG_M2] [--shaft-damping NM_S_PER_RAD] [--accel-time S] [--output-limit COUNTS] [--clearance-sd RAD] [--offset-sd NM] [--offset-rate NM_S]\n");
   return 2;
 }
 
@@ -102,6 +104,8 @@ int main(int argc, char** argv) {
       smooth = true;
     } else if (a == "--motor-inertia" && i + 1 < argc) {
       options.motor_inertia_kg_m2 = std::atof(argv[++i]);
+    } else if (a == "--shaft-damping" && i + 1 < argc) {
+      options.shaft_damping_nm_s_per_rad = std::atof(argv[++i]);
     } else if (a == "--clearance-sd" && i + 1 < argc) {
       options.backlash_sd_rad.setConstant(std::atof(argv[++i]));
     } else if (a == "--offset-sd" && i + 1 < argc) {

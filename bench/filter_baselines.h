@@ -23,6 +23,7 @@
 #include "pliant/estimation/filter.h"
 #include "pliant/models/effects/backlash_hysteresis.h"
 #include "pliant/models/effects/compliance.h"
+#include "pliant/models/effects/shaft_damping.h"
 #include "pliant/models/parameters.h"
 
 namespace pliant::bench {
@@ -220,7 +221,10 @@ class DenseEkf {
       if (!(std::abs(increment[j]) <= 5.0 * dt)) increment[j] = 0.0;
     }
     last_encoder_ = s.encoder_rad;
-    for (int j = 0; j < 2; ++j) motion_[j].Advance(model_.options(), dt, increment[j]);
+    for (int j = 0; j < 2; ++j) {
+      motion_[j].Advance(model_.options(), dt, increment[j]);
+      bend_rate_[j] = increment[j] / dt;
+    }
     Jet8 x[kN], next[kN];
     for (int i = 0; i < kN; ++i) x[i] = Jet8(x_[i], i);
     for (int j = 0; j < 2; ++j) {
@@ -259,8 +263,17 @@ class DenseEkf {
     for (int i = 0; i < 4; ++i) h.row(i) = z[i].v.transpose();
     for (int j = 0; j < 2; ++j) {
       innovation[j] = s.encoder_rad[j] - z[j].a;
-      innovation[2 + j] = s.effort_nm[j] - model_.Bias(j, s.encoder_rad[j], s.insertion_depth_m) -
-                          (s.tip_fixed ? motion_[j].InertialTorque(o) : 0.0) - z[2 + j].a;
+      const int t = kS * j + 1;
+      const double held =
+          s.tip_fixed
+              ? motion_[j].InertialTorque(o) +
+                    models::ShaftDampingTorque(
+                        o.shaft_damping_nm_s_per_rad, bend_rate_[j],
+                        models::BacklashHold(estimation::SureLoad(o, x_[t], p_(t, t)),
+                                             model_.width(j)))
+              : 0.0;
+      innovation[2 + j] =
+          s.effort_nm[j] - model_.Bias(j, s.encoder_rad[j], s.insertion_depth_m) - held - z[2 + j].a;
     }
     typename Types::M44 r = Types::M44::Zero(4, 4);
     for (int j = 0; j < 2; ++j) {
@@ -297,6 +310,7 @@ class DenseEkf {
   double last_time_ = 0.0;
   Eigen::Vector2d last_encoder_{0.0, 0.0};
   estimation::MotorMotion motion_[2];
+  double bend_rate_[2] = {0.0, 0.0};  // the encoder's rate over the step, rad/s
 };
 
 using DenseFixedEkf = DenseEkf<FixedSizeTypes>;

@@ -87,8 +87,8 @@ int Usage() {
                "[--effort-noise NM] [--encoder-noise RAD] [--torque-rate NM_S] "
                "[--pinned-rate RAD_S] [--backlash-rate RAD_S] [--scale-sd SD] [--scale-rate PER_S] "
                "[--transit-noise F] [--deflection-error E] [--clearance-sd RAD] [--offset-sd NM] "
-               "[--inertia KG_M2] [--accel-time S] [--deadzone-width NM] [--width-multiple M] "
-               "[--first-seed N] [--paper-pushes] [--centred-shaft] [--per-run] [--scenario FILE] "
+               "[--inertia KG_M2] [--damping NM_S_PER_RAD] [--accel-time S] [--deadzone-width NM] "
+               "[--width-multiple M] [--first-seed N] [--paper-pushes] [--centred-shaft] [--per-run] [--scenario FILE] "
                "[--trace RUN]\n");
   return 2;
 }
@@ -103,7 +103,7 @@ int main(int argc, char** argv) {
   bool paper_pushes = false;
   bool centred_shaft = false;
   double deadzone_width = -1.0;
-  bool inertia_given = false;
+  bool inertia_given = false, damping_given = false;
   int first_seed = 1000;
   std::string scenario_path = PLIANT_SOURCE_DIR "/experiments/scenarios/divot.json";
   estimation::FilterOptions options;
@@ -159,6 +159,9 @@ int main(int argc, char** argv) {
     } else if (a == "--inertia" && has) {
       options.motor_inertia_kg_m2 = std::atof(argv[++i]);
       inertia_given = true;
+    } else if (a == "--damping" && has) {
+      options.shaft_damping_nm_s_per_rad = std::atof(argv[++i]);
+      damping_given = true;
     } else if (a == "--accel-time" && has) {
       options.acceleration_filter_time_s = std::atof(argv[++i]);
     } else if (a == "--load-margin" && has) {
@@ -213,6 +216,8 @@ int main(int argc, char** argv) {
       }
       // The arm's motor inertia is the truth's, as the bias is.
       if (!inertia_given) options.motor_inertia_kg_m2 = scenario.joint.inertia_kg_m2[0];
+      // And so is the instrument shaft's damping.
+      if (!damping_given) options.shaft_damping_nm_s_per_rad = scenario.tip.shaft_damping_nm_s_per_rad;
       estimation::ComplianceFilter filter(parameters, options);
       const io::StandardColumns c(log.header);
       const std::size_t rows = log.Rows(), cols = log.Columns();
@@ -286,12 +291,12 @@ int main(int argc, char** argv) {
                              : "continuous (direction 0-360 deg, peak 0.2-1.2 N·m)");
     std::printf("  options: effort %.4g N·m, encoder %.4g rad, torque rate %.4g N·m/√s, pinned "
                 "%.4g rad/√s, backlash %.4g rad/√s, transit %.3g, deflection error %.3g, motor "
-                "inertia %.3g kg·m², clearance sd %.3g rad, offset sd %.3g N·m\n",
+                "inertia %.3g kg·m², shaft damping %.3g N·m·s/rad, clearance sd %.3g rad, offset sd %.3g N·m\n",
                 options.effort_noise_nm, options.encoder_noise_rad,
                 options.external_torque_rate_nm, options.backlash_pinned_rate_rad,
                 options.backlash_rate_rad, options.backlash_transit_noise,
                 options.deflection_model_error, options.motor_inertia_kg_m2,
-                options.backlash_sd_rad[0], options.effort_offset_sd_nm[0]);
+                options.shaft_damping_nm_s_per_rad, options.backlash_sd_rad[0], options.effort_offset_sd_nm[0]);
     bench::PrintTally("one sample per run (independent)", one_per_run, true);
     bench::PrintTally("one held sample per run (indep.)", one_held_per_run, true);
     std::printf("  every %d-th sample (band indicative only: the samples are correlated):\n",

@@ -118,6 +118,11 @@ Command AddFilterCommand(CLI::App& app) {
                   "while the tip is held (0: off; the simulator's arm has 0.08). For logs at the "
                   "full 1.5 kHz rate: θ̈ cannot be estimated from a subsampled log")
       ->capture_default_str();
+  sub->add_option("--shaft-damping", f.shaft_damping_nm_s_per_rad,
+                  "The instrument shaft's damping c_s, N·m·s/rad: with the tip held and the shaft "
+                  "on its wall, c_s times the encoder's rate is taken out of the effort with J·θ̈ "
+                  "(0: off; the simulator's instruments have 0.02)")
+      ->capture_default_str();
   sub->add_flag_function(
       "--no-inertia-alignment", [&f](std::int64_t) { f.align_inertial_torque = false; },
       "With --motor-inertia: take J·θ̈ out of each effort as it comes, where the acceleration "

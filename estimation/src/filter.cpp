@@ -15,6 +15,7 @@
 #include "filter_impl.h"
 #include "pliant/models/effects/backlash_hysteresis.h"
 #include "pliant/models/effects/compliance.h"
+#include "pliant/models/effects/shaft_damping.h"
 
 namespace pliant::estimation {
 
@@ -107,6 +108,7 @@ void ComplianceFilter::Impl::Reset() {
     transition[j] = FilterTransition{};
     for (int& r : rejections[j]) r = 0;
     motion[j] = MotorMotion{};
+    bend_rate_rad_s[j] = 0.0;
     restart_output[j] = true;
   }
   std::fill(window_nis.begin(), window_nis.end(), 0.0);
@@ -340,6 +342,13 @@ void ComplianceFilter::Impl::Repair(int j, const FilterSample& sample, bool full
   const double clearance = delta[j] + s.mean[kClearance];
   s.mean[kBacklash] = std::clamp(s.mean[kBacklash], -clearance, clearance);
   s.mean[kScale] = std::clamp(s.mean[kScale], kMinScale, kMaxScale);
+  // A calibration offset of spread σ_β is not many σ_β away: beyond the bound
+  // the effort's change is the load's, which a held tip's β would otherwise
+  // take (effort_offset_bound_sd).
+  const double offset_bound = options.effort_offset_bound_sd * uncertainty[j].effort_offset_sd_nm;
+  if (offset_bound > 0.0) {
+    s.mean[kOffset] = std::clamp(s.mean[kOffset], -offset_bound, offset_bound);
+  }
   if (!s.mean.allFinite() || !s.covariance.allFinite()) {
     const double q = std::isfinite(sample.encoder_rad[j]) ? sample.encoder_rad[j] : 0.0;
     s.mean << q, 0.0, 0.0, 1.0, 0.0, 0.0;
@@ -398,6 +407,7 @@ void ComplianceFilter::Impl::StepState(const FilterSample& sample) {
     const double dt =
         state_clock.Advance(sample, options.sample_period_s, &increment, implausible_jump);
     for (int j = 0; j < 2; ++j) {
+      bend_rate_rad_s[j] = increment[j] / dt;
       if (released) {
         Release(j, dt, increment[j]);
         restart_output[j] = true;
@@ -438,7 +448,20 @@ void ComplianceFilter::Impl::StepState(const FilterSample& sample) {
     // acceleration (one count ≈ 0.07 rad/s², 0.006 N·m) walked b across the
     // clearance during the long free-tip rests of a divot log and moved the
     // tip by δ (docs/validation.md, Part 4).
-    const double inertial = sample.tip_fixed ? motion[j].InertialTorque(options) : 0.0;
+    // With it, the shaft's damping, in proportion to how firmly the load the
+    // filter is sure of holds the shaft on its wall (the simulator's: all or
+    // nothing, by contact).
+    double inertial = 0.0;
+    if (sample.tip_fixed) {
+      inertial = motion[j].InertialTorque(options);
+      if (options.shaft_damping_nm_s_per_rad > 0.0) {
+        const double hold = models::BacklashHold(
+            SureLoad(options, joint[j].mean[kTorque], joint[j].covariance(kTorque, kTorque)),
+            width[j]);
+        inertial += models::ShaftDampingTorque(options.shaft_damping_nm_s_per_rad,
+                                               bend_rate_rad_s[j], hold);
+      }
+    }
     ScalarUpdate(j, kEffortChannel, Vector::Unit(kTorque) + Vector::Unit(kOffset),
                  effort - tau0 - inertial - joint[j].mean[kTorque] - joint[j].mean[kOffset],
                  options.effort_noise_nm * options.effort_noise_nm, &tally, false,

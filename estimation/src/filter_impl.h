@@ -145,6 +145,9 @@ struct ComplianceFilter::Impl {
   bool last_tip_fixed = false;
   bool implausible_jump[2] = {false, false};  // encoder moved faster than any joint can
   MotorMotion motion[2];  // for the inertial torque in the effort, from the newest sample
+  // The motor's rate over the state's own step (rad/s): the shaft's bend rate
+  // with the tip held, in step with the effort it is taken out of.
+  double bend_rate_rad_s[2] = {0.0, 0.0};
   bool motion_started = false;
   SampleClock motion_clock;  // between the newest samples
   Eigen::Vector2d newest_step{0.0, 0.0};  // the newest sample's encoder change (0 when not motion)

@@ -108,6 +108,14 @@ bool FilterOptions::IsValid(std::string* error) const {
                        "inertia reflected at the joint in kg·m², or 0 to read the whole effort "
                        "as load");
   }
+  if (!(std::isfinite(shaft_damping_nm_s_per_rad) && shaft_damping_nm_s_per_rad >= 0.0)) {
+    return Fail(error, "FilterOptions::shaft_damping_nm_s_per_rad must be finite and >= 0 — "
+                       "the shaft's damping in N·m·s/rad, or 0 for none");
+  }
+  if (!(effort_offset_bound_sd > 0.0)) {  // NaN fails too; infinity is allowed: no bound
+    return Fail(error, "FilterOptions::effort_offset_bound_sd must be > 0 — standard "
+                       "deviations of the effort offset, e.g. 3, or infinity for no bound");
+  }
   for (const auto& [name, p] : {std::pair<const char*, double>{"gate_probability", gate_probability},
                                 {"mismatch_probability", mismatch_probability}}) {
     if (!(p > 0.5 && p < 1.0)) {

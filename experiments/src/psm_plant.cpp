@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "pliant/models/effects/shaft_damping.h"
+
 namespace pliant::experiments::detail {
 namespace {
 
@@ -159,7 +161,8 @@ Eigen::Vector2d PsmPlant::ShaftTorqueAt(double t, const double* y,
       truth_.ShaftTorque(elastic, contact, StateAt(t, y), torque_guess_, d_torque_d_deflection);
   torque_guess_ = tau;
   for (int j = 0; j < 2; ++j) {
-    if (contact[j]) tau[j] += tip_.shaft_damping_nm_s_per_rad * y[6 + j];
+    tau[j] += models::ShaftDampingTorque(tip_.shaft_damping_nm_s_per_rad, y[6 + j],
+                                         contact[j] ? 1.0 : 0.0);
   }
   return tau;
 }

@@ -183,8 +183,10 @@ TrialResult RunTrial(const Study& study, int trial) {
   options.effort_noise_nm = std::max(d.values[kEffortNoiseSdNm], 1e-4);
   // The arm's motor inertia is a property of the PSM, not of the instrument
   // under study: the filter is told it (docs/filter.md, motor inertia), as a
-  // lab would from the arm's dynamic identification.
+  // lab would from the arm's dynamic identification; likewise the damping of
+  // the instrument model's shaft, which the study does not vary.
   options.motor_inertia_kg_m2 = push.joint.inertia_kg_m2.mean();
+  options.shaft_damping_nm_s_per_rad = push.tip.shaft_damping_nm_s_per_rad;  // the arm's shafts
   InstrumentPrior(study, parameters, &options);
   estimation::FilterSmoother smoother(parameters, options);
 

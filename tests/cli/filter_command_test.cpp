@@ -1,8 +1,10 @@
 // pliant filter on the shipped sample: columns, summary, smoothing, errors.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include "pliant/io/log_reader.h"
 #include "run_command.h"
@@ -48,21 +50,44 @@ TEST(FilterCommand, SmoothsWhenAsked) {
   EXPECT_NE(r.out.find("smoother             RMS"), std::string::npos) << r.out;
 }
 
+// `pliant filter FLAG` on the divot push log against the defaults: how many
+// rows of `column` differ (out of how many).
+std::pair<std::size_t, std::size_t> RowsAFlagChanges(const std::string& flag,
+                                                     const std::string& column) {
+  const auto dir = FreshDirectory("filter_command_flag");
+  const std::string args = " --params " + kSource + "/data/paper.json " + kSource +
+                           "/data/divot_push.csv -o ";
+  const auto plain = (dir / "plain.csv").string(), flagged = (dir / "flagged.csv").string();
+  EXPECT_EQ(RunCommand(kCli + " filter" + args + plain, dir).exit_code, 0);
+  const auto r = RunCommand(kCli + " filter " + flag + args + flagged, dir);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  const auto a = io::ReadLog(plain).Column(column), b = io::ReadLog(flagged).Column(column);
+  EXPECT_EQ(a.size(), b.size());
+  std::size_t differ = 0;
+  for (std::size_t i = 0; i < std::min(a.size(), b.size()); ++i) differ += a[i] != b[i];
+  return {differ, a.size()};
+}
+
 // --no-held-load-bound reaches the filter: the held rows' q1_sd differ from
 // the default's (the load's process variance is another), the rest of the run not.
 TEST(FilterCommand, TheHeldLoadBoundCanBeTurnedOff) {
-  const auto dir = FreshDirectory("filter_command_held_load");
-  const std::string args = " --params " + kSource + "/data/paper.json " + kSource +
-                           "/data/divot_push.csv -o ";
-  const auto bounded = (dir / "bounded.csv").string(), free = (dir / "free.csv").string();
-  ASSERT_EQ(RunCommand(kCli + " filter" + args + bounded, dir).exit_code, 0);
-  const auto r = RunCommand(kCli + " filter --no-held-load-bound" + args + free, dir);
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  const auto a = io::ReadLog(bounded).Column("q1_sd"), b = io::ReadLog(free).Column("q1_sd");
-  ASSERT_EQ(a.size(), b.size());
-  std::size_t differ = 0;
-  for (std::size_t i = 0; i < a.size(); ++i) differ += a[i] != b[i];
-  EXPECT_GT(differ, a.size() / 10);
+  const auto [differ, rows] = RowsAFlagChanges("--no-held-load-bound", "q1_sd");
+  EXPECT_GT(differ, rows / 10);
+}
+
+// The damping term acts on held rows whose encoder moves with the shaft on its
+// wall: the corrected angles change there; a negative damping is bad input.
+TEST(FilterCommand, TheShaftDampingReachesTheFilter) {
+  const auto [differ, rows] = RowsAFlagChanges("--shaft-damping 0.02", "q1_corr");
+  EXPECT_GT(differ, rows / 10);
+  const auto dir = FreshDirectory("filter_command_damping");
+  const auto out = (dir / "out.csv").string();
+  const auto bad = RunCommand(kCli + " filter --shaft-damping -1 --params " + kSource +
+                                  "/data/paper.json " + kSource + "/data/divot_push.csv -o " + out,
+                              dir);
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("shaft_damping_nm_s_per_rad"), std::string::npos) << bad.err;
+  EXPECT_FALSE(std::filesystem::exists(out));
 }
 
 TEST(FilterCommand, BadInputExitsTwoAndWritesNothing) {

@@ -13,9 +13,12 @@
 #include "../support/paper_parameters.h"
 #include "pliant/estimation/filter.h"
 #include "pliant/models/effects/backlash_hysteresis.h"
+#include "pliant/models/effects/shaft_damping.h"
 #include "pliant/models/parameters.h"
 
 namespace pliant::estimation::testing {
+
+inline constexpr double kNoBend = 1e300;  // no previous sample
 
 struct SyntheticRun {
   std::vector<FilterSample> samples;
@@ -35,8 +38,22 @@ struct SyntheticOptions {
   double drift_on_s = -1.0;      ///< from this time, an effort offset (a hidden effect)
   double drift_nm = 0.0;
   bool draw_scale = true;        ///< compliance scale from the prior; else 1
+  /// c_s, N·m·s/rad: the effort also carries c_s·g·q̇ (models::ShaftDampingTorque),
+  /// g the true load's hold on the wall, q̇ the noise-free encoder's rate.
+  double shaft_damping_nm_s_per_rad = 0.0;
   unsigned seed = 1;
 };
+
+// A log drawn from the filter's own model has no deflection error beyond s:
+// the allowance for the plant's is off; and it is drawn with the parameters'
+// own clearance and bias.
+inline FilterOptions ModelLogOptions() {
+  FilterOptions o;
+  o.deflection_model_error = 0.0;
+  o.backlash_sd_rad.setZero();
+  o.effort_offset_sd_nm.setZero();
+  return o;
+}
 
 inline SyntheticRun MakeSyntheticRun(const models::ModelParameters& p, const FilterOptions& o,
                                      const SyntheticOptions& s) {
@@ -46,6 +63,7 @@ inline SyntheticRun MakeSyntheticRun(const models::ModelParameters& p, const Fil
   const double dt = 1.0 / s.rate_hz;
   const int n = int(s.duration_s * s.rate_hz);
   Eigen::Vector2d tip(0.1, -0.2), backlash(0.0, 0.0), wander(0.0, 0.0);
+  Eigen::Vector2d last_bend{kNoBend, kNoBend};  // the noise-free encoder of the last sample
   if (s.draw_scale) {
     run.true_scale << 1.0 + o.compliance_scale_sd * normal(rng),
         1.0 + o.compliance_scale_sd * normal(rng);
@@ -68,11 +86,17 @@ inline SyntheticRun MakeSyntheticRun(const models::ModelParameters& p, const Fil
       backlash[j] = models::BacklashHysteresisStep(backlash[j], torque[j], jp.backlash_rad,
                                                    jp.deadzone_width_nm);
       const double k_rad_per_nm = models::ComplianceAt(jp, s.depth_m);
-      sample.encoder_rad[j] = tip[j] + backlash[j] + run.true_scale[j] * k_rad_per_nm * torque[j] +
-                              o.encoder_noise_rad * normal(rng);
+      const double bend = tip[j] + backlash[j] + run.true_scale[j] * k_rad_per_nm * torque[j];
+      sample.encoder_rad[j] = bend + o.encoder_noise_rad * normal(rng);
       const double drift = (s.drift_on_s >= 0.0 && t >= s.drift_on_s) ? s.drift_nm : 0.0;
+      const double damping =
+          last_bend[j] == kNoBend
+              ? 0.0
+              : models::ShaftDampingTorque(s.shaft_damping_nm_s_per_rad, (bend - last_bend[j]) / dt,
+                                           models::BacklashHold(torque[j], jp.deadzone_width_nm));
+      last_bend[j] = bend;
       sample.effort_nm[j] = models::BiasTorqueAt(jp, sample.encoder_rad[j], s.depth_m) +
-                            torque[j] + drift + o.effort_noise_nm * normal(rng);
+                            torque[j] + drift + damping + o.effort_noise_nm * normal(rng);
     }
     run.samples.push_back(sample);
     run.truth.push_back(tip);

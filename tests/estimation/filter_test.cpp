@@ -16,6 +16,7 @@ namespace {
 
 using models::testing::PaperParameters;
 using testing::MakeSyntheticRun;
+using testing::ModelLogOptions;
 using testing::SyntheticOptions;
 
 constexpr double kDelta1 = 0.008478;
@@ -23,17 +24,6 @@ constexpr double kDelta1 = 0.008478;
 bool IsSymmetricPositiveDefinite(const estimation::FilterStateMatrix& p) {
   if (!p.allFinite() || !p.isApprox(p.transpose(), 1e-12)) return false;
   return Eigen::LLT<estimation::FilterStateMatrix>(p).info() == Eigen::Success;
-}
-
-// A log drawn from the filter's own model (filter_synthetic.h) has no
-// deflection error beyond s: the allowance for the plant's is off.
-FilterOptions ModelLogOptions() {
-  FilterOptions o;
-  o.deflection_model_error = 0.0;
-  // The synthetic logs are drawn with the parameters' own clearance and bias.
-  o.backlash_sd_rad.setZero();
-  o.effort_offset_sd_nm.setZero();
-  return o;
 }
 
 TEST(FilterOptions, DefaultsAreValid) {
