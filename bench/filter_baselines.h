@@ -277,7 +277,7 @@ class DenseEkf {
     }
     typename Types::M44 r = Types::M44::Zero(4, 4);
     for (int j = 0; j < 2; ++j) {
-      const double deflection = o.deflection_model_error * h(j, kS * j + 3);  // error × K·tau
+      const double deflection = o.DeflectionModelError() * h(j, kS * j + 3);  // error × K·tau
       r(j, j) = o.encoder_noise_rad * o.encoder_noise_rad + deflection * deflection;
       r(2 + j, 2 + j) = o.effort_noise_nm * o.effort_noise_nm;
       // s is taught by the sure load while it holds the shaft, as in the filter.

@@ -295,7 +295,7 @@ int main(int argc, char** argv) {
                 options.effort_noise_nm, options.encoder_noise_rad,
                 options.external_torque_rate_nm, options.backlash_pinned_rate_rad,
                 options.backlash_rate_rad, options.backlash_transit_noise,
-                options.deflection_model_error, options.motor_inertia_kg_m2,
+                options.DeflectionModelError(), options.motor_inertia_kg_m2,
                 options.shaft_damping_nm_s_per_rad, options.backlash_sd_rad[0], options.effort_offset_sd_nm[0]);
     bench::PrintTally("one sample per run (independent)", one_per_run, true);
     bench::PrintTally("one held sample per run (indep.)", one_held_per_run, true);

@@ -57,6 +57,7 @@ ComplianceFilter::Impl::Impl(const models::ModelParameters& p, const FilterOptio
   if (!why.empty()) throw std::invalid_argument(why);
   std::string error;
   if (!o.IsValid(&error)) throw std::invalid_argument(error);
+  options.deflection_model_error = o.DeflectionModelError();  // NaN resolved once
   for (int j = 0; j < 2; ++j) {
     const auto& joint_parameters = p.joints[j];
     for (int i = 0; i < 4; ++i) {

@@ -90,9 +90,11 @@ bool FilterOptions::IsValid(std::string* error) const {
     return Fail(error, "FilterOptions::backlash_transit_noise must be finite and >= 0 — a "
                        "fraction of the clearance's variance, e.g. 1, or 0 for a certain pull");
   }
-  if (!(std::isfinite(deflection_model_error) && deflection_model_error >= 0.0)) {
+  if (!std::isnan(deflection_model_error) &&
+      !(std::isfinite(deflection_model_error) && deflection_model_error >= 0.0)) {
     return Fail(error, "FilterOptions::deflection_model_error must be finite and >= 0 — a "
-                       "fraction of K·tau, e.g. 0.06, or 0 for logs drawn from the model");
+                       "fraction of K·tau, e.g. 0.08, 0 for logs drawn from the model, or NaN "
+                       "to take it from the shaft damping");
   }
   if (!(std::isfinite(load_margin_sd) && load_margin_sd >= 0.0)) {
     return Fail(error, "FilterOptions::load_margin_sd must be finite and >= 0 — standard "

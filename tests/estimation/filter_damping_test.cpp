@@ -83,6 +83,21 @@ TEST(ShaftDamping, OptionIsValidated) {
   EXPECT_FALSE(o.IsValid(&error));
 }
 
+// ε covers what the effort model lacks: less once the damping is in it.
+TEST(ShaftDamping, TheDeflectionErrorDefaultsByWhetherTheDampingIsGiven) {
+  FilterOptions o;
+  EXPECT_TRUE(std::isnan(o.deflection_model_error));
+  EXPECT_DOUBLE_EQ(o.DeflectionModelError(), 0.08);
+  o.shaft_damping_nm_s_per_rad = 0.02;
+  EXPECT_DOUBLE_EQ(o.DeflectionModelError(), 0.05);
+  o.deflection_model_error = 0.03;  // given: as given, damping or not
+  EXPECT_DOUBLE_EQ(o.DeflectionModelError(), 0.03);
+  std::string error;
+  EXPECT_TRUE(o.IsValid(&error)) << error;
+  o.deflection_model_error = std::numeric_limits<double>::infinity();
+  EXPECT_FALSE(o.IsValid(&error));
+}
+
 // Largest |β̂| (N·m) over a held log whose effort gains a hidden offset of
 // `drift_nm` from 2 s on, with σ_β = 0.02 N·m and β's mean bounded at
 // `bound_sd` σ_β.

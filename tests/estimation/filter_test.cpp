@@ -194,7 +194,7 @@ TEST(ComplianceFilter, FreeTipUnderLoadCarriesTheCompliancePrior) {
   EXPECT_NEAR(e.backlash_offset_rad[0], kDelta1, 1e-9);
   // The compliance prior (σ_s = 0.1) and the deflection model's own error
   // (deflection_model_error, white on each encoder sample) are independent.
-  const double prior_part = k * tau * std::hypot(0.1, o.deflection_model_error);
+  const double prior_part = k * tau * std::hypot(0.1, o.DeflectionModelError());
   EXPECT_GE(std::sqrt(e.covariance_rad2(0, 0)), 0.99 * prior_part);
   EXPECT_LE(std::sqrt(e.covariance_rad2(0, 0)), 1.1 * prior_part);
   // The tip correction is |J·(q − q̂)|, J = r·cos(q2) for joint 1 (r = 0.15 − 0.0156 m).

@@ -61,6 +61,7 @@
 // control thread owns it; distinct objects are independent and may run on
 // different threads (they share only immutable parameters they copied).
 
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <memory>
@@ -140,8 +141,9 @@ struct FilterOptions {
   /// tip held, a shaft on its wall (hold g) resists being bent, and the
   /// effort carries g·c_s·θ̇ beyond the load, θ̇ the encoder's rate over the
   /// state's step; the filter takes it out with J·θ̈. Why: read as load, it
-  /// is deflection that is not there, which ε had to cover (0.08 without it,
-  /// 0.05 with it; docs/validation.md, Part 4, "The shaft's damping").
+  /// is deflection that is not there, which ε had to cover (ε 0.08 without
+  /// it, 0.05 with it: DeflectionModelError(); docs/validation.md, Part 4,
+  /// "The shaft's damping").
   /// 0 (the default): none; the simulator's instrument has 0.02.
   double shaft_damping_nm_s_per_rad = 0.0;
   double acceleration_filter_time_s = 0.004;
@@ -158,14 +160,25 @@ struct FilterOptions {
   /// rate than the PSM's 1.5 kHz needs that period set to line up.
   /// false: process each sample as it comes (the inertial torque then lags).
   bool align_inertial_torque = true;
-  /// Relative error of the deflection model, as encoder variance (this × K·tau)².
-  /// Calibrated on the simulator with its motor inertia and shaft damping
-  /// given (motor_inertia_kg_m2, shaft_damping_nm_s_per_rad): 0.05 puts the
-  /// paper's pushes and continuous loads inside their NEES bands (0.08
-  /// without the damping term, whose error it covered; 0.075 before
-  /// bound_held_load_rate; docs/validation.md, Part 4, "The shaft's damping").
-  /// A log whose damping is not given needs about 0.08.
-  double deflection_model_error = 0.05;
+  /// ε, the relative error of the deflection model, as encoder variance
+  /// (ε·K·tau)²: what the effort model lacks. Calibrated on the simulator,
+  /// its motor inertia given: with its shaft damping given too, 0.05 puts the
+  /// paper's pushes and continuous loads inside their NEES bands; without,
+  /// the damping is part of what ε covers, and 0.08 keeps the paper's pushes
+  /// inside (docs/validation.md, Part 4, "The shaft's damping"; 0.075 before
+  /// bound_held_load_rate). NaN (the default): DeflectionModelError() picks
+  /// by shaft_damping_nm_s_per_rad.
+  double deflection_model_error = kFromDamping;
+  static constexpr double kFromDamping = std::numeric_limits<double>::quiet_NaN();
+  static constexpr double kDeflectionErrorWithDamping = 0.05;
+  static constexpr double kDeflectionErrorWithoutDamping = 0.08;
+  /// ε in use: deflection_model_error, or when NaN 0.05 with the damping
+  /// given (> 0) and 0.08 without.
+  double DeflectionModelError() const {
+    if (!std::isnan(deflection_model_error)) return deflection_model_error;
+    return shaft_damping_nm_s_per_rad > 0.0 ? kDeflectionErrorWithDamping
+                                            : kDeflectionErrorWithoutDamping;
+  }
   /// A load counts only beyond this many of its own standard deviations
   /// (SureLoad): it pulls the shaft toward a wall (the hold g) and teaches the
   /// compliance scale (∂h/∂s = K·tau) with the part of tau the filter is sure
