@@ -273,7 +273,8 @@ class DenseEkf {
                                              model_.width(j)))
               : 0.0;
       innovation[2 + j] =
-          s.effort_nm[j] - model_.Bias(j, s.encoder_rad[j], s.insertion_depth_m) - held - z[2 + j].a;
+          s.effort_nm[j] - model_.Bias(j, s.encoder_rad[j], s.insertion_depth_m) - held -
+          z[2 + j].a;
     }
     typename Types::M44 r = Types::M44::Zero(4, 4);
     for (int j = 0; j < 2; ++j) {

@@ -88,7 +88,8 @@ int Usage() {
                "[--pinned-rate RAD_S] [--backlash-rate RAD_S] [--scale-sd SD] [--scale-rate PER_S] "
                "[--transit-noise F] [--deflection-error E] [--clearance-sd RAD] [--offset-sd NM] "
                "[--inertia KG_M2] [--damping NM_S_PER_RAD] [--accel-time S] [--deadzone-width NM] "
-               "[--width-multiple M] [--first-seed N] [--paper-pushes] [--centred-shaft] [--per-run] [--scenario FILE] "
+               "[--width-multiple M] [--first-seed N] [--paper-pushes] [--centred-shaft] [--per-run] "
+               "[--scenario FILE] "
                "[--trace RUN]\n");
   return 2;
 }
@@ -217,7 +218,9 @@ int main(int argc, char** argv) {
       // The arm's motor inertia is the truth's, as the bias is.
       if (!inertia_given) options.motor_inertia_kg_m2 = scenario.joint.inertia_kg_m2[0];
       // And so is the instrument shaft's damping.
-      if (!damping_given) options.shaft_damping_nm_s_per_rad = scenario.tip.shaft_damping_nm_s_per_rad;
+      if (!damping_given) {
+        options.shaft_damping_nm_s_per_rad = scenario.tip.shaft_damping_nm_s_per_rad;
+      }
       estimation::ComplianceFilter filter(parameters, options);
       const io::StandardColumns c(log.header);
       const std::size_t rows = log.Rows(), cols = log.Columns();
@@ -291,7 +294,8 @@ int main(int argc, char** argv) {
                              : "continuous (direction 0-360 deg, peak 0.2-1.2 N·m)");
     std::printf("  options: effort %.4g N·m, encoder %.4g rad, torque rate %.4g N·m/√s, pinned "
                 "%.4g rad/√s, backlash %.4g rad/√s, transit %.3g, deflection error %.3g, motor "
-                "inertia %.3g kg·m², shaft damping %.3g N·m·s/rad, clearance sd %.3g rad, offset sd %.3g N·m\n",
+                "inertia %.3g kg·m², shaft damping %.3g N·m·s/rad, clearance sd %.3g rad, offset "
+                "sd %.3g N·m\n",
                 options.effort_noise_nm, options.encoder_noise_rad,
                 options.external_torque_rate_nm, options.backlash_pinned_rate_rad,
                 options.backlash_rate_rad, options.backlash_transit_noise,

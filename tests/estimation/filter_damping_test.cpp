@@ -63,7 +63,8 @@ TEST(ShaftDamping, TakenOutOfTheEffortTheLoadIsAsIfThereWereNone) {
     const RunErrors told = FilterDampedLog(0.2, 0.2, seed);
     const RunErrors not_told = FilterDampedLog(0.2, 0.0, seed);
     const RunErrors none = FilterDampedLog(0.0, 0.0, seed);
-    std::printf("seed %u: load rms told %.5f not told %.5f no damping %.5f N·m; NEES %.3f %.3f %.3f\n",
+    std::printf("seed %u: load rms told %.5f not told %.5f no damping %.5f N·m; "
+                "NEES %.3f %.3f %.3f\n",
                 seed, told.load_rms_nm, not_told.load_rms_nm, none.load_rms_nm, told.mean_nees,
                 not_told.mean_nees, none.mean_nees);
     EXPECT_LT(told.load_rms_nm, 1.2 * none.load_rms_nm) << "seed " << seed;
