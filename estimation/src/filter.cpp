@@ -109,7 +109,7 @@ void ComplianceFilter::Impl::Reset() {
     transition[j] = FilterTransition{};
     for (int& r : rejections[j]) r = 0;
     motion[j] = MotorMotion{};
-    bend_rate_rad_s[j] = 0.0;
+    bend_rate_rad_s[j] = step_hold[j] = 0.0;
     restart_output[j] = true;
   }
   std::fill(window_nis.begin(), window_nis.end(), 0.0);
@@ -166,6 +166,7 @@ void ComplianceFilter::Impl::Predict(int j, double dt, bool tip_fixed, bool seat
   // The hold is that of the load the filter is sure of (load_margin_sd).
   const double sure_load = SureLoad(o, s.mean[kTorque], s.covariance(kTorque, kTorque));
   const double hold = models::BacklashHold(sure_load, width[j]);
+  step_hold[j] = hold;
   const StateJet next = models::BacklashHysteresisStep(b, tau, clearance, width[j], relax, hold);
   // How firmly the load holds the shaft on a wall: S² = 1 beyond the width,
   // 0 at no load (BacklashProcessVariance).
@@ -235,6 +236,7 @@ void ComplianceFilter::Impl::Release(int j, double dt, double encoder_increment)
   s.mean[kTip] += encoder_increment;
   s.mean[kTorque] = 0.0;
   s.mean[kBacklash] *= keep;
+  step_hold[j] = 0.0;
   Matrix& P = s.covariance;
   P.row(kTorque).setZero();
   P.col(kTorque).setZero();
@@ -450,19 +452,13 @@ void ComplianceFilter::Impl::StepState(const FilterSample& sample) {
     // clearance during the long free-tip rests of a divot log and moved the
     // tip by δ (docs/validation.md, Part 4).
     // With it, the shaft's damping, in proportion to how firmly the load the
-    // filter is sure of holds the shaft on its wall (the simulator's: all or
-    // nothing, by contact).
-    double inertial = 0.0;
-    if (sample.tip_fixed) {
-      inertial = motion[j].InertialTorque(options);
-      if (options.shaft_damping_nm_s_per_rad > 0.0) {
-        const double hold = models::BacklashHold(
-            SureLoad(options, joint[j].mean[kTorque], joint[j].covariance(kTorque, kTorque)),
-            width[j]);
-        inertial += models::ShaftDampingTorque(options.shaft_damping_nm_s_per_rad,
-                                               bend_rate_rad_s[j], hold);
-      }
-    }
+    // filter is sure of holds the shaft on its wall (the prediction's hold;
+    // the simulator's is all or nothing, by contact).
+    const double inertial =
+        sample.tip_fixed ? motion[j].InertialTorque(options) +
+                               models::ShaftDampingTorque(options.shaft_damping_nm_s_per_rad,
+                                                          bend_rate_rad_s[j], step_hold[j])
+                         : 0.0;
     ScalarUpdate(j, kEffortChannel, Vector::Unit(kTorque) + Vector::Unit(kOffset),
                  effort - tau0 - inertial - joint[j].mean[kTorque] - joint[j].mean[kOffset],
                  options.effort_noise_nm * options.effort_noise_nm, &tally, false,

@@ -148,6 +148,9 @@ struct ComplianceFilter::Impl {
   // The motor's rate over the state's own step (rad/s): the shaft's bend rate
   // with the tip held, in step with the effort it is taken out of.
   double bend_rate_rad_s[2] = {0.0, 0.0};
+  // The hold g of the sure load at this step's prediction (0 before one, or
+  // after a release): the backlash step's and the damping term's.
+  double step_hold[2] = {0.0, 0.0};
   bool motion_started = false;
   SampleClock motion_clock;  // between the newest samples
   Eigen::Vector2d newest_step{0.0, 0.0};  // the newest sample's encoder change (0 when not motion)
