@@ -7,8 +7,9 @@
 //                      dense F P Fᵀ + Q, batch update with a 4×4 S and the
 //                      dense Joseph form (I − K H) P (I − K H)ᵀ + K R Kᵀ.
 //   DenseDynamicEkf  — the same with Eigen::MatrixXd / VectorXd.
-// Like the filter: the seating bound when a free tip is held, and s, e and beta
-// as consider states (zero gain) while the tip is free. No gating, mismatch
+// Like the filter: the seating bound when a free tip is held, s, e and beta
+// as consider states (zero gain) while the tip is free, and beta with the tip
+// held too. No gating, mismatch
 // test, release or reference channel: the bench feeds clean data.
 // Header-only so that a test can check the fast filter against it.
 
@@ -291,6 +292,8 @@ class DenseEkf {
     if (!s.tip_fixed) {  // consider states (Schmidt–Kalman): s, e and beta keep their prior
       for (int j = 0; j < 2; ++j) gain.middleRows(kS * j + estimation::kStateScale, 3).setZero();
     }
+    // beta is a consider state with the tip held too, as in the filter.
+    for (int j = 0; j < 2; ++j) gain.row(kS * j + estimation::kStateEffortOffset).setZero();
     x_ += gain * innovation;
     const Matrix a = Matrix::Identity(kN, kN) - gain * h;
     p_ = (a * p_ * a.transpose() + gain * r * gain.transpose()).eval();

@@ -281,7 +281,7 @@ void ComplianceFilter::Impl::EncoderModel(double depth_m, Eigen::Vector2d* predi
 // world has changed (a slip, a new contact) and the filter must follow it.
 void ComplianceFilter::Impl::ScalarUpdate(int j, Channel channel, const Vector& h,
                                           double innovation, double variance, StepTally* tally,
-                                          bool implausible, bool consider_instrument) {
+                                          bool implausible, Consider consider) {
   FilterJointState& s = joint[j];
   Matrix& P = s.covariance;
   Vector u = P * h;
@@ -324,7 +324,18 @@ void ComplianceFilter::Impl::ScalarUpdate(int j, Channel channel, const Vector& 
   // through the Joseph form below). With a gain they drifted over a long
   // free log on tiny correlations with the tip (s 1 → 0.82 over 2 M samples
   // of the clamped sweep; validation.md). A reference still teaches them.
-  if (consider_instrument) k[kScale] = k[kClearance] = k[kOffset] = 0.0;
+  if (consider == kConsiderInstrument) k[kScale] = k[kClearance] = k[kOffset] = 0.0;
+  // β is a consider state of a held tip's encoder and effort too, but for
+  // samples with a reference. A held tip cannot tell β from the load: across
+  // a clamped sweep the encoders fix s (the slope), e (wall to wall) and only
+  // tip − s·K·β. The one handle on β is where the shaft leaves its wall,
+  // which the dead zone's smooth S(tau/w) stands in for; the EKF read it
+  // sharply and wrongly (in a clamped-beam Monte Carlo trial, β 0.013 N·m
+  // against a true −0.019, and the held tip 270 encoder counts off with a σ
+  // of 48; the clamped study's NEES 7.8, with this 1.9; docs/validation.md
+  // Part 4, "The bias offset as a consider state"). A reference (the tip
+  // known) breaks the tie, and then the encoder and effort teach β.
+  if (consider == kConsiderOffset) k[kOffset] = 0.0;
   // Joseph form for one scalar, P+ = (I − k hᵀ) P (I − k hᵀ)ᵀ + k r kᵀ, which
   // for any gain k (not only the optimal one) expands exactly to
   //   P+ = P − k uᵀ − u kᵀ + S k kᵀ = P + k vᵀ + v kᵀ,   v = S k / 2 − u.
@@ -462,7 +473,7 @@ void ComplianceFilter::Impl::StepState(const FilterSample& sample) {
     ScalarUpdate(j, kEffortChannel, Vector::Unit(kTorque) + Vector::Unit(kOffset),
                  effort - tau0 - inertial - joint[j].mean[kTorque] - joint[j].mean[kOffset],
                  options.effort_noise_nm * options.effort_noise_nm, &tally, false,
-                 !sample.tip_fixed);
+                 ConsiderFor(sample, j));
   }
   // Encoders, linearised at the state the efforts just updated.
   Eigen::Vector2d predicted;
@@ -477,7 +488,7 @@ void ComplianceFilter::Impl::StepState(const FilterSample& sample) {
     h[j][kScale] *= sure_fraction[j];
     ScalarUpdate(j, kEncoderChannel, h[j], sample.encoder_rad[j] - predicted[j],
                  options.encoder_noise_rad * options.encoder_noise_rad + deflection * deflection,
-                 &tally, implausible_jump[j] && !sample.tip_fixed, !sample.tip_fixed);
+                 &tally, implausible_jump[j] && !sample.tip_fixed, ConsiderFor(sample, j));
   }
   for (int j = 0; j < 2; ++j) {
     const double ref = sample.reference_rad[j];

@@ -106,9 +106,16 @@ struct ComplianceFilter::Impl {
   void Predict(int j, double dt, bool tip_fixed, bool seated, double encoder_increment);
   void Release(int j, double dt, double encoder_increment);
   void EncoderModel(double depth, Eigen::Vector2d* predicted, Vector* h) const;
+  /// Which states an update may not move (Schmidt–Kalman consider states):
+  /// none, β alone (a held tip without a reference), or s, e and β (a free tip).
+  enum Consider { kLearnAll, kConsiderOffset, kConsiderInstrument };
+  static Consider ConsiderFor(const FilterSample& sample, int j) {
+    if (!sample.tip_fixed) return kConsiderInstrument;
+    return std::isfinite(sample.reference_rad[j]) ? kLearnAll : kConsiderOffset;
+  }
   void ScalarUpdate(int j, Channel channel, const Vector& h, double innovation,
                     double variance, StepTally* tally, bool implausible = false,
-                    bool consider_instrument = false);
+                    Consider consider = kLearnAll);
   void Repair(int j, const FilterSample& sample, bool full_check, StepTally* tally);
   void UpdateWindow(StepTally* tally);
   /// K_j(L) at the current depth, rad/N·m, evaluated again only when the depth changes.

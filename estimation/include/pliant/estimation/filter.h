@@ -51,6 +51,10 @@
 //   P): a free tip is wherever the encoder puts it, so those updates hold no
 //   information about the instrument; the prior of compliance and backlash is
 //   kept, as issue 5 asks. A reference (q_ref) still teaches them.
+//   With the tip held, beta stays a consider state of both: a held tip tells
+//   beta from the load only where the shaft leaves its wall, which the smooth
+//   dead zone cannot place (docs/filter.md, "The bias offset"); a reference
+//   still teaches it.
 // Jacobians come from ceres::Jet. The joints share no state and no
 // measurement while no coupling effect is on, so the filter runs two blocks
 // of 6 states with sequential scalar updates (Joseph form); q12_cov is then
@@ -215,15 +219,19 @@ struct FilterOptions {
   /// 0 (the default): off, the bias torque is taken as exact. NaN: the
   /// parameters' covariance of "jointN.bias_torque.coefficients[0]" (the
   /// Fourier mean) when they carry one, else kDefaultEffortOffsetSdNm.
-  /// Off by default because it has not earned its place on held-tip logs: a
-  /// held tip cannot tell β from the load, and the state made the divot and
-  /// clamped-beam tips worse and their corrected angles jumpy (docs/filter.md).
+  /// β's mean moves only with a reference (q_ref): to the encoder and the
+  /// effort it is a consider state, whose doubt flows into q_tip through
+  /// s·K(L). Off by default since sessions in which β was learned at every
+  /// crossing made the divot and clamped-beam tips worse and their corrected
+  /// angles jumpy (docs/filter.md); that learning is gone, the default stays.
   Eigen::Vector2d effort_offset_sd_nm{0.0, 0.0};
   double effort_offset_rate_nm = 0.0;     ///< σ_β̇, N·m/√s (0: a constant offset)
   /// β's mean stays within ±this × σ_β. Why: a held tip tells β from the load
-  /// only through the deflection; in a clamped-beam Monte Carlo trial β took
-  /// a rising load, 0.18 N·m (9 σ_β), while the held tip moved 14 mrad in
-  /// its stead (NEES 14,619; with this bound, 102). Infinity: no bound.
+  /// only through the deflection; in a clamped-beam Monte Carlo trial, while
+  /// β was still learned from the encoder, β took a rising load, 0.18 N·m
+  /// (9 σ_β), and the held tip moved 14 mrad in its stead (NEES 14,619; with
+  /// this bound, 102). Now only a reference moves β's mean, and the bound
+  /// holds it there too. Infinity: no bound.
   double effort_offset_bound_sd = 3.0;
   static constexpr double kFromParameters = std::numeric_limits<double>::quiet_NaN();
   /// Without a covariance: the clearance of one instrument vs another of the
