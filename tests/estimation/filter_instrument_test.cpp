@@ -68,8 +68,9 @@ double MeanNeesOverDrawnInstruments(double clearance_sd_rad, double offset_sd_nm
 }
 
 // Measured (100 runs, seed 77): clearance spread only 1.90, bias offset only
-// 5.25, both 4.00, both with the filter told they are exact 1.2·10⁴, neither
-// (the model's own log) 2.08. While β was learned from the held tip's
+// 5.25, both 4.00, both with the filter told they are exact 1.1·10⁴ (the
+// bias offset alone, told it is exact, 1.2·10⁴), neither (the model's own
+// log) 2.08. While β was learned from the held tip's
 // encoder and effort: bias offset only 10.0, both 9.50.
 TEST(FilterInstrumentUncertainty, ClearanceSpreadReachesTheCovariance) {
   // Clearances drawn from the prior, exact bias: the mean of 100 χ²(2) lies

@@ -53,8 +53,8 @@
 //   kept, as issue 5 asks. A reference (q_ref) still teaches them.
 //   With the tip held, beta stays a consider state of both: a held tip tells
 //   beta from the load only where the shaft leaves its wall, which the smooth
-//   dead zone cannot place (docs/filter.md, "The bias offset"); a reference
-//   still teaches it.
+//   dead zone cannot place (docs/filter.md, "The bias offset is a consider
+//   state"); on a sample with a reference (the tip known) they teach it.
 // Jacobians come from ceres::Jet. The joints share no state and no
 // measurement while no coupling effect is on, so the filter runs two blocks
 // of 6 states with sequential scalar updates (Joseph form); q12_cov is then
