@@ -221,9 +221,11 @@ struct FilterOptions {
   /// Fourier mean) when they carry one, else kDefaultEffortOffsetSdNm.
   /// β's mean moves only with a reference (q_ref): to the encoder and the
   /// effort it is a consider state, whose doubt flows into q_tip through
-  /// s·K(L). Off by default since sessions in which β was learned at every
-  /// crossing made the divot and clamped-beam tips worse and their corrected
-  /// angles jumpy (docs/filter.md); that learning is gone, the default stays.
+  /// s·K(L). Off by default: learned, β made the divot and clamped-beam tips
+  /// worse and their corrected angles jumpy; as a consider state it is worse
+  /// still on those logs (divot 0.277 mm against 0.037 off, with σ_β from
+  /// identification; docs/validation.md Part 4, "The bias offset as a
+  /// consider state"). Turn it on with a reference, or to study its doubt.
   Eigen::Vector2d effort_offset_sd_nm{0.0, 0.0};
   double effort_offset_rate_nm = 0.0;     ///< σ_β̇, N·m/√s (0: a constant offset)
   /// β's mean stays within ±this × σ_β. Why: a held tip tells β from the load
