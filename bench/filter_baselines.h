@@ -9,8 +9,8 @@
 //   DenseDynamicEkf  — the same with Eigen::MatrixXd / VectorXd.
 // Like the filter: the seating bound when a free tip is held, s, e and beta
 // as consider states (zero gain) while the tip is free, and beta with the tip
-// held too. No gating, mismatch
-// test, release or reference channel: the bench feeds clean data.
+// held too. No gating, mismatch test, release or reference channel: the bench
+// feeds clean data.
 // Header-only so that a test can check the fast filter against it.
 
 #include <algorithm>

@@ -51,8 +51,8 @@ TEST(FilterCommand, SmoothsWhenAsked) {
 }
 
 // `pliant filter FLAG` on the divot push log against the defaults: how many
-// rows of `column` differ (out of how many).
-// `directory` is the test's own: ctest runs the tests of this file in parallel.
+// rows of `column` differ (out of how many). `directory` is the calling
+// test's own: ctest runs the tests of this file in parallel.
 std::pair<std::size_t, std::size_t> RowsAFlagChanges(const std::string& flag,
                                                      const std::string& column,
                                                      const std::string& directory) {
@@ -73,14 +73,16 @@ std::pair<std::size_t, std::size_t> RowsAFlagChanges(const std::string& flag,
 // --no-held-load-bound reaches the filter: the held rows' q1_sd differ from
 // the default's (the load's process variance is another), the rest of the run not.
 TEST(FilterCommand, TheHeldLoadBoundCanBeTurnedOff) {
-  const auto [differ, rows] = RowsAFlagChanges("--no-held-load-bound", "q1_sd", "filter_command_held_bound");
+  const auto [differ, rows] =
+      RowsAFlagChanges("--no-held-load-bound", "q1_sd", "filter_command_held_bound");
   EXPECT_GT(differ, rows / 10);
 }
 
 // The damping term acts on held rows whose encoder moves with the shaft on its
 // wall: the corrected angles change there; a negative damping is bad input.
 TEST(FilterCommand, TheShaftDampingReachesTheFilter) {
-  const auto [differ, rows] = RowsAFlagChanges("--shaft-damping 0.02", "q1_corr", "filter_command_damping_flag");
+  const auto [differ, rows] =
+      RowsAFlagChanges("--shaft-damping 0.02", "q1_corr", "filter_command_damping_flag");
   EXPECT_GT(differ, rows / 10);
   const auto dir = FreshDirectory("filter_command_damping");
   const auto out = (dir / "out.csv").string();
