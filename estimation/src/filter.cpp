@@ -114,7 +114,7 @@ void ComplianceFilter::Impl::Reset() {
   }
   std::fill(window_nis.begin(), window_nis.end(), 0.0);
   std::fill(window_dof.begin(), window_dof.end(), 0);
-  window_position = window_count = window_dof_sum = checked_joint = 0;
+  window_position = window_count = window_dof_sum = check_phase = 0;
   motion_started = advanced = false;
   held_first = held_count = 0;
   newest_step.setZero();
@@ -372,8 +372,9 @@ void ComplianceFilter::Impl::Repair(int j, const FilterSample& sample, bool full
     return;
   }
   // The Joseph form keeps P positive semi-definite but for rounding: a
-  // non-positive variance is looked for every step, the full Cholesky test
-  // (a fifth of a step's time) runs on each block every other step.
+  // non-positive variance is looked for every step; the full Cholesky test
+  // (a fifth of a step's time when both blocks ran it every step) runs on
+  // one block every fourth step, so on each every eighth (kFullCheckPeriod).
   const bool diagonal_positive = (s.covariance.diagonal().array() > 0.0).all();
   if (!diagonal_positive || (full_check && !IsPositiveDefinite(s.covariance))) {
     const double jitter = 1e-12 * s.covariance.diagonal().cwiseAbs().maxCoeff() + 1e-20;
@@ -496,8 +497,8 @@ void ComplianceFilter::Impl::StepState(const FilterSample& sample) {
     ScalarUpdate(j, kReferenceChannel, Vector::Unit(kTip), ref - joint[j].mean[kTip],
                  options.reference_noise_rad * options.reference_noise_rad, &tally);
   }
-  for (int j = 0; j < 2; ++j) Repair(j, sample, j == checked_joint, &tally);
-  checked_joint ^= 1;
+  for (int j = 0; j < 2; ++j) Repair(j, sample, check_phase == kFullCheckPeriod / 2 * j, &tally);
+  check_phase = (check_phase + 1) % kFullCheckPeriod;
   UpdateWindow(&tally);
 
   FilterEstimate& estimate = state_estimate;

@@ -174,7 +174,10 @@ struct ComplianceFilter::Impl {
   double output_count_rad = 0.0;       // one encoder count
   bool restart_output[2] = {true, true};  // the output jumps to the estimate this step
   int window_position = 0;
-  int checked_joint = 0;  // whose covariance gets the full Cholesky test this step
+  // Steps between two full Cholesky tests of a block's covariance: the
+  // rounding the Joseph form leaves builds up over thousands of steps, not 8.
+  static constexpr int kFullCheckPeriod = 8;
+  int check_phase = 0;  // block 0 is tested at phase 0, block 1 at phase 4
   int window_count = 0;
   double window_sum = 0.0;
   int window_dof_sum = 0;
