@@ -124,6 +124,11 @@ Command AddFilterCommand(CLI::App& app) {
                   "(0: off; the simulator's instruments have 0.02). Given, the deflection model's "
                   "error ε drops from 0.08 to 0.05: the damping is no longer part of what it covers")
       ->capture_default_str();
+  sub->add_option("--deflection-error", f.deflection_model_error,
+                  "ε: the share of the deflection s·K(L)·τ the model may miss, as white encoder "
+                  "noise (ε·K·τ)² (default: 0.05 with --shaft-damping, else 0.08; 0 for logs "
+                  "drawn from the model itself; larger: more cautious q_sd across instruments, "
+                  "docs/filter.md)");
   sub->add_flag_function(
       "--no-inertia-alignment", [&f](std::int64_t) { f.align_inertial_torque = false; },
       "With --motor-inertia: take J·θ̈ out of each effort as it comes, where the acceleration "

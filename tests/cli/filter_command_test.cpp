@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "pliant/io/log_reader.h"
 #include "run_command.h"
@@ -78,20 +79,51 @@ TEST(FilterCommand, TheHeldLoadBoundCanBeTurnedOff) {
   EXPECT_GT(differ, rows / 10);
 }
 
+// `pliant filter FLAG` with a bad value: exit 2, the option's field named,
+// nothing written.
+void ExpectRejected(const std::string& flag, const std::string& field,
+                    const std::string& directory) {
+  const auto dir = FreshDirectory(directory);
+  const auto out = (dir / "out.csv").string();
+  const auto bad = RunCommand(kCli + " filter " + flag + " --params " + kSource +
+                                  "/data/paper.json " + kSource + "/data/divot_push.csv -o " + out,
+                              dir);
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find(field), std::string::npos) << bad.err;
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
 // The damping term acts on held rows whose encoder moves with the shaft on its
 // wall: the corrected angles change there; a negative damping is bad input.
 TEST(FilterCommand, TheShaftDampingReachesTheFilter) {
   const auto [differ, rows] =
       RowsAFlagChanges("--shaft-damping 0.02", "q1_corr", "filter_command_damping_flag");
   EXPECT_GT(differ, rows / 10);
-  const auto dir = FreshDirectory("filter_command_damping");
-  const auto out = (dir / "out.csv").string();
-  const auto bad = RunCommand(kCli + " filter --shaft-damping -1 --params " + kSource +
-                                  "/data/paper.json " + kSource + "/data/divot_push.csv -o " + out,
-                              dir);
-  EXPECT_EQ(bad.exit_code, 2);
-  EXPECT_NE(bad.err.find("shaft_damping_nm_s_per_rad"), std::string::npos) << bad.err;
-  EXPECT_FALSE(std::filesystem::exists(out));
+  ExpectRejected("--shaft-damping -1", "shaft_damping_nm_s_per_rad", "filter_command_damping");
+}
+
+// ε is encoder noise in proportion to the deflection: 0.2 instead of the
+// default 0.08 (no damping given) widens q1_sd on every row of the divot push,
+// the median by 2.15× (measured); a negative ε is bad input.
+TEST(FilterCommand, TheDeflectionErrorWidensTheIntervals) {
+  const auto dir = FreshDirectory("filter_command_deflection_flag");
+  const std::string args = " --params " + kSource + "/data/paper.json " + kSource +
+                           "/data/divot_push.csv -o ";
+  const auto plain = (dir / "plain.csv").string(), wide = (dir / "wide.csv").string();
+  ASSERT_EQ(RunCommand(kCli + " filter" + args + plain, dir).exit_code, 0);
+  ASSERT_EQ(RunCommand(kCli + " filter --deflection-error 0.2" + args + wide, dir).exit_code, 0);
+  auto a = io::ReadLog(plain).Column("q1_sd"), b = io::ReadLog(wide).Column("q1_sd");
+  ASSERT_EQ(a.size(), b.size());
+  std::size_t narrower = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) narrower += b[i] < a[i];
+  EXPECT_EQ(narrower, 0u);
+  const auto median = [](std::vector<double>& v) {
+    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+    return v[v.size() / 2];
+  };
+  EXPECT_GT(median(b) / median(a), 1.8);
+  ExpectRejected("--deflection-error -1", "deflection_model_error",
+                 "filter_command_deflection_bad");
 }
 
 TEST(FilterCommand, BadInputExitsTwoAndWritesNothing) {
