@@ -51,12 +51,11 @@ TEST(FilterCommand, SmoothsWhenAsked) {
   EXPECT_NE(r.out.find("smoother             RMS"), std::string::npos) << r.out;
 }
 
-// `pliant filter FLAG` on the divot push log against the defaults: how many
-// rows of `column` differ (out of how many). `directory` is the calling
-// test's own: ctest runs the tests of this file in parallel.
-std::pair<std::size_t, std::size_t> RowsAFlagChanges(const std::string& flag,
-                                                     const std::string& column,
-                                                     const std::string& directory) {
+// `pliant filter` on the divot push log, with the defaults and with FLAG:
+// `column` of each run. `directory` is the calling test's own: ctest runs the
+// tests of this file in parallel.
+std::pair<std::vector<double>, std::vector<double>> ColumnWithAndWithout(
+    const std::string& flag, const std::string& column, const std::string& directory) {
   const auto dir = FreshDirectory(directory);
   const std::string args = " --params " + kSource + "/data/paper.json " + kSource +
                            "/data/divot_push.csv -o ";
@@ -64,8 +63,16 @@ std::pair<std::size_t, std::size_t> RowsAFlagChanges(const std::string& flag,
   EXPECT_EQ(RunCommand(kCli + " filter" + args + plain, dir).exit_code, 0);
   const auto r = RunCommand(kCli + " filter " + flag + args + flagged, dir);
   EXPECT_EQ(r.exit_code, 0) << r.err;
-  const auto a = io::ReadLog(plain).Column(column), b = io::ReadLog(flagged).Column(column);
+  auto a = io::ReadLog(plain).Column(column), b = io::ReadLog(flagged).Column(column);
   EXPECT_EQ(a.size(), b.size());
+  return {a, b};
+}
+
+// How many rows of `column` FLAG changes (out of how many).
+std::pair<std::size_t, std::size_t> RowsAFlagChanges(const std::string& flag,
+                                                     const std::string& column,
+                                                     const std::string& directory) {
+  const auto [a, b] = ColumnWithAndWithout(flag, column, directory);
   std::size_t differ = 0;
   for (std::size_t i = 0; i < std::min(a.size(), b.size()); ++i) differ += a[i] != b[i];
   return {differ, a.size()};
@@ -106,13 +113,8 @@ TEST(FilterCommand, TheShaftDampingReachesTheFilter) {
 // default 0.08 (no damping given) widens q1_sd on every row of the divot push,
 // the median by 2.15× (measured); a negative ε is bad input.
 TEST(FilterCommand, TheDeflectionErrorWidensTheIntervals) {
-  const auto dir = FreshDirectory("filter_command_deflection_flag");
-  const std::string args = " --params " + kSource + "/data/paper.json " + kSource +
-                           "/data/divot_push.csv -o ";
-  const auto plain = (dir / "plain.csv").string(), wide = (dir / "wide.csv").string();
-  ASSERT_EQ(RunCommand(kCli + " filter" + args + plain, dir).exit_code, 0);
-  ASSERT_EQ(RunCommand(kCli + " filter --deflection-error 0.2" + args + wide, dir).exit_code, 0);
-  auto a = io::ReadLog(plain).Column("q1_sd"), b = io::ReadLog(wide).Column("q1_sd");
+  auto [a, b] =
+      ColumnWithAndWithout("--deflection-error 0.2", "q1_sd", "filter_command_deflection_flag");
   ASSERT_EQ(a.size(), b.size());
   std::size_t narrower = 0;
   for (std::size_t i = 0; i < a.size(); ++i) narrower += b[i] < a[i];
