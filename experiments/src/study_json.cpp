@@ -119,7 +119,7 @@ Study ParseStudy(const std::string& text, const std::string& file) {
            {{"format", true}, {"version", true}, {"description", true}, {"scenario", true},
             {"scenario_set", false}, {"trials", true}, {"seed", true}, {"identify", false},
             {"calibration", false}, {"instrument", false}, {"noise", false},
-            {"contact", false}});
+            {"contact", false}, {"filter", false}});
   if (r.String(doc["format"], "/format") != kFormat) {
     r.Fail("/format", "format must be \"pliant-study\"", "is this a study file?");
   }
@@ -136,6 +136,13 @@ Study ParseStudy(const std::string& text, const std::string& file) {
              "write true (identify on a simulated calibration) or false (nominal parameters)");
     }
     s.identify = doc["identify"].get<bool>();
+  }
+  if (doc.contains("filter")) {  // the estimator's own options, not the plant's
+    r.Object(doc["filter"], "/filter", {{"deflection_model_error", false}});
+    if (doc["filter"].contains("deflection_model_error")) {
+      s.deflection_model_error = r.Number(doc["filter"]["deflection_model_error"],
+                                          "/filter/deflection_model_error", "(share of K·τ)", 0.0, 1.0);
+    }
   }
   if (doc.contains("scenario_set")) s.scenario_set = ReadSet(r, doc["scenario_set"], "/scenario_set");
   // The scenario: a path relative to the study file, its overrides applied.

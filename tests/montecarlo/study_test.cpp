@@ -100,6 +100,17 @@ TEST(Study, TheTrialCountDoesNotChangeTheFingerprint) {
   EXPECT_NE(a.fingerprint, c.fingerprint);
 }
 
+// The filter's ε: NaN (the filter's own default) unless the study sets it,
+// and then part of the fingerprint: results with another ε are another study.
+TEST(Study, SetsTheFiltersDeflectionError) {
+  const Study plain = ParseStudy(StudyText(""), "a.json");
+  EXPECT_TRUE(std::isnan(plain.deflection_model_error));
+  const Study set =
+      ParseStudy(StudyText(R"(, "filter": {"deflection_model_error": 0.1})"), "a.json");
+  EXPECT_EQ(set.deflection_model_error, 0.1);
+  EXPECT_NE(plain.fingerprint, set.fingerprint);
+}
+
 // Each bad study names its file, line and key.
 struct BadStudy {
   std::string extra;
@@ -131,7 +142,10 @@ INSTANTIATE_TEST_SUITE_P(
                  "instrument.compliance_scale"},
         BadStudy{",\n \"noise\": {\"effort_sd_nm\": \"loud\"}", 5, "noise.effort_sd_nm"},
         BadStudy{",\n \"identify\": true", 5, "calibration"},
-        BadStudy{",\n \"scenario_set\": [\"experiment.hold_s=-1\"]", 5, "scenario_set"}),
+        BadStudy{",\n \"scenario_set\": [\"experiment.hold_s=-1\"]", 5, "scenario_set"},
+        BadStudy{",\n \"filter\": {\"deflection_model_error\": -0.1}", 5,
+                 "filter.deflection_model_error"},
+        BadStudy{",\n \"filter\": {\"gate\": 0.9}", 5, "gate"}),
     [](const ::testing::TestParamInfo<BadStudy>& info) {
       std::string name;  // the key the message must name, as a test name
       for (char c : info.param.says) name += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';

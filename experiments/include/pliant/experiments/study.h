@@ -13,6 +13,7 @@
 //   const TrialDraw draw = DrawTrial(study, stream);
 
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -73,6 +74,10 @@ struct Study {
   /// beam), each simulated with the trial's truth; their files' texts enter
   /// the fingerprint.
   std::vector<Scenario> calibration;
+  /// The filter's and smoother's deflection-model error ε
+  /// (estimation::FilterOptions::deflection_model_error); NaN: the filter's
+  /// default for the arm (0.05 with the shaft's damping, else 0.08).
+  double deflection_model_error = std::numeric_limits<double>::quiet_NaN();
   int trials = 100;
   std::uint64_t seed = 1;
   /// FNV-1a 64 of the study (without "trials") and of the scenario file's
