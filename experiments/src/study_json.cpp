@@ -140,8 +140,9 @@ Study ParseStudy(const std::string& text, const std::string& file) {
   if (doc.contains("filter")) {  // the estimator's own options, not the plant's
     r.Object(doc["filter"], "/filter", {{"deflection_model_error", false}});
     if (doc["filter"].contains("deflection_model_error")) {
-      s.deflection_model_error = r.Number(doc["filter"]["deflection_model_error"],
-                                          "/filter/deflection_model_error", "(share of K·τ)", 0.0, 1.0);
+      s.deflection_model_error =
+          r.Number(doc["filter"]["deflection_model_error"], "/filter/deflection_model_error",
+                   "(share of K·τ)", 0.0, 1.0);
     }
   }
   if (doc.contains("scenario_set")) s.scenario_set = ReadSet(r, doc["scenario_set"], "/scenario_set");

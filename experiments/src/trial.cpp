@@ -188,9 +188,7 @@ TrialResult RunTrial(const Study& study, int trial) {
   options.motor_inertia_kg_m2 = push.joint.inertia_kg_m2.mean();
   options.shaft_damping_nm_s_per_rad = push.tip.shaft_damping_nm_s_per_rad;  // the arm's shafts
   InstrumentPrior(study, parameters, &options);
-  if (!std::isnan(study.deflection_model_error)) {
-    options.deflection_model_error = study.deflection_model_error;
-  }
+  options.deflection_model_error = study.deflection_model_error;  // NaN: the filter's default
   estimation::FilterSmoother smoother(parameters, options);
 
   const io::StandardColumns c(log.header);
