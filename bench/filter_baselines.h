@@ -63,11 +63,15 @@ class EkfModel {
       const T* xj = x + kS * j;
       T* nj = next + kS * j;
       nj[0] = xj[0] + (tip_fixed ? 0.0 : increment[j]);
-      nj[1] = xj[1];
       // The hold g of the sure load, as a constant, as the filter does.
+      const double hold = models::BacklashHold(sure_load_[j], width_[j]);
+      // A held tip's load follows the motor, as in the filter.
+      nj[1] = xj[1];
+      if (tip_fixed && options_.load_follows_motor) {
+        nj[1] += estimation::HeldLoadIncrement(hold, increment[j], xj[3], Compliance(j, depth_));
+      }
       nj[2] = models::BacklashHysteresisStep(xj[2], xj[1], delta_[j] + xj[4], width_[j],
-                                             tip_fixed ? 0.0 : Relax(j, increment[j]),
-                                             models::BacklashHold(sure_load_[j], width_[j]));
+                                             tip_fixed ? 0.0 : Relax(j, increment[j]), hold);
       nj[3] = xj[3];
       nj[4] = xj[4];
       nj[5] = xj[5];
@@ -281,7 +285,8 @@ class DenseEkf {
     for (int j = 0; j < 2; ++j) {
       const double deflection = o.DeflectionModelError() * h(j, kS * j + 3);  // error × K·tau
       r(j, j) = o.encoder_noise_rad * o.encoder_noise_rad + deflection * deflection;
-      r(2 + j, 2 + j) = o.effort_noise_nm * o.effort_noise_nm;
+      r(2 + j, 2 + j) = s.tip_fixed ? estimation::HeldEffortVariance(o, motion_[j].InertialTorque(o))
+                                    : o.effort_noise_nm * o.effort_noise_nm;
       // s is taught by the sure load while it holds the shaft, as in the filter.
       const int t = kS * j + 1;
       h(j, kS * j + 3) *= estimation::ScaleLearningFraction(o, x_[t], p_(t, t), model_.width(j));

@@ -56,7 +56,8 @@ io::InputError OptionError(const std::string& error) {
   static const std::pair<const char*, const char*> kOptions[] = {
       {"effort_noise_nm", "--effort-noise"},    {"encoder_noise_rad", "--encoder-noise"},
       {"external_torque_rate_nm", "--torque-rate"}, {"compliance_scale_sd", "--compliance-sd"},
-      {"gate_probability", "--gate"},            {"mismatch_window", "--mismatch-window"}};
+      {"gate_probability", "--gate"},            {"mismatch_window", "--mismatch-window"},
+      {"inertial_torque_error", "--inertial-error"}};
   std::string problem = error;
   const std::string prefix = "FilterOptions::";
   if (problem.rfind(prefix, 0) == 0) problem.erase(0, prefix.size());
@@ -122,11 +123,11 @@ Command AddFilterCommand(CLI::App& app) {
                   "The instrument shaft's damping c_s, N·m·s/rad: with the tip held and the shaft "
                   "on its wall, c_s times the encoder's rate is taken out of the effort with J·θ̈ "
                   "(0: off; the simulator's instruments have 0.02). Given, the deflection model's "
-                  "error ε drops from 0.08 to 0.05: the damping is no longer part of what it covers")
+                  "error ε drops from 0.08 to 0.04: the damping is no longer part of what it covers")
       ->capture_default_str();
   sub->add_option("--deflection-error", f.deflection_model_error,
                   "ε: the share of the deflection s·K(L)·τ the model may miss, as white encoder "
-                  "noise (ε·K·τ)² (default: 0.05 with --shaft-damping, else 0.08; 0 for logs "
+                  "noise (ε·K·τ)² (default: 0.04 with --shaft-damping, else 0.08; 0 for logs "
                   "drawn from the model itself; larger: more cautious q_sd across instruments, "
                   "docs/filter.md)");
   sub->add_flag_function(
@@ -137,6 +138,14 @@ Command AddFilterCommand(CLI::App& app) {
       "--no-held-load-bound", [&f](std::int64_t) { f.bound_held_load_rate = false; },
       "Let a held tip's load change as freely as a free tip's (σ_τ̇) instead of no faster than "
       "the motor bends the shaft (docs/filter.md)");
+  sub->add_flag_function(
+      "--no-load-following", [&f](std::int64_t) { f.load_follows_motor = false; },
+      "Predict a held tip's load as a random walk instead of by the bend the motor's encoder "
+      "increment puts into a shaft on its wall (docs/filter.md)");
+  sub->add_option("--inertial-error", f.inertial_torque_error,
+                  "κ: the share of the fitted inertial torque J·θ̈ the fit may misread, as effort "
+                  "variance (κ·J·θ̈)² with the tip held (0: exact; only with --motor-inertia)")
+      ->capture_default_str();
   // Both joints get the same prior from the command line; NaN keeps "from the
   // parameters' covariance, else the default" (filter.h).
   sub->add_option_function<double>(

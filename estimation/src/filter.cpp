@@ -198,6 +198,21 @@ void ComplianceFilter::Impl::Predict(int j, double dt, bool tip_fixed, bool seat
   P.row(kBacklash) = row.transpose();
   P(kBacklash, kBacklash) = pbb;
 
+  // A held tip's motor bends the shaft: tau follows the encoder (F's tau row
+  // gains ∂tau+/∂s). b's step above read the load before this one, so F is
+  // this row's map after b's, and F·P·Fᵀ takes it after b's.
+  double fts = 0.0;
+  if (tip_fixed && o.load_follows_motor) {
+    const StateJet added = HeldLoadIncrement(hold, encoder_increment,
+                                             StateJet(s.mean[kScale], kScale), ComplianceAtDepth(j));
+    s.mean[kTorque] += added.a;
+    fts = added.v[kScale];
+    const Vector torque_row = P.col(kTorque) + fts * P.col(kScale);
+    P.col(kTorque) = torque_row;
+    P.row(kTorque) = torque_row.transpose();
+    P(kTorque, kTorque) = torque_row[kTorque] + fts * torque_row[kScale];
+  }
+
   Vector q;
   q[kTip] = tip_fixed ? 0.0 : o.free_tip_rate_rad * o.free_tip_rate_rad * dt;
   // A held tip's load moves only as the motor bends the shaft (HeldLoadProcessVariance).
@@ -215,6 +230,7 @@ void ComplianceFilter::Impl::Predict(int j, double dt, bool tip_fixed, bool seat
 
   t.predicted_mean = s.mean;
   t.f_torque_torque = 1.0;
+  t.f_torque_scale = fts;
   t.f_backlash_torque = fbt;
   t.f_backlash_backlash = fbb;
   t.f_backlash_clearance = fbe;
@@ -248,7 +264,7 @@ void ComplianceFilter::Impl::Release(int j, double dt, double encoder_increment)
   q[kBacklash] = (1.0 - keep * keep) * prior(kBacklash, kBacklash);
   P.diagonal() += q;
   t.predicted_mean = s.mean;
-  t.f_torque_torque = 0.0;
+  t.f_torque_torque = t.f_torque_scale = 0.0;
   t.f_backlash_torque = t.f_backlash_clearance = 0.0;
   t.f_backlash_backlash = keep;
   t.process_noise = q;
@@ -471,10 +487,12 @@ void ComplianceFilter::Impl::StepState(const FilterSample& sample) {
                                models::ShaftDampingTorque(options.shaft_damping_nm_s_per_rad,
                                                           bend_rate_rad_s[j], step_hold[j])
                          : 0.0;
+    const double variance = sample.tip_fixed
+                                ? HeldEffortVariance(options, motion[j].InertialTorque(options))
+                                : options.effort_noise_nm * options.effort_noise_nm;
     ScalarUpdate(j, kEffortChannel, Vector::Unit(kTorque) + Vector::Unit(kOffset),
                  effort - tau0 - inertial - joint[j].mean[kTorque] - joint[j].mean[kOffset],
-                 options.effort_noise_nm * options.effort_noise_nm, &tally, false,
-                 ConsiderFor(sample, j));
+                 variance, &tally, false, ConsiderFor(sample, j));
   }
   // Encoders, linearised at the state the efforts just updated.
   Eigen::Vector2d predicted;

@@ -110,6 +110,11 @@ bool FilterOptions::IsValid(std::string* error) const {
                        "inertia reflected at the joint in kg·m², or 0 to read the whole effort "
                        "as load");
   }
+  if (!(std::isfinite(inertial_torque_error) && inertial_torque_error >= 0.0)) {
+    return Fail(error, "FilterOptions::inertial_torque_error must be finite and >= 0 — a "
+                       "fraction of the fitted inertial torque J·θ̈, e.g. 0.3, or 0 for an "
+                       "exact fit");
+  }
   if (!(std::isfinite(shaft_damping_nm_s_per_rad) && shaft_damping_nm_s_per_rad >= 0.0)) {
     return Fail(error, "FilterOptions::shaft_damping_nm_s_per_rad must be finite and >= 0 — "
                        "the shaft's damping in N·m·s/rad, or 0 for none");

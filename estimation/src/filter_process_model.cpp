@@ -57,6 +57,11 @@ double HeldLoadProcessVariance(const FilterOptions& o, double dt, double encoder
   return g * std::min(free_rate, bound) + (1.0 - g) * free_rate;
 }
 
+double HeldEffortVariance(const FilterOptions& o, double inertial_torque_nm) {
+  const double misread = o.inertial_torque_error * inertial_torque_nm;
+  return o.effort_noise_nm * o.effort_noise_nm + misread * misread;
+}
+
 // The fraction of its wall an unloaded shaft forgets in one step: with time
 // constant T while the joint moves (an encoder increment of 3 counts or more
 // per step counts fully, less in proportion), nothing while it rests.

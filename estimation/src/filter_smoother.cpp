@@ -7,12 +7,14 @@
 namespace pliant::estimation {
 namespace {
 
-constexpr int kTorque = kStateTorque, kBacklash = kStateBacklash, kClearance = kStateClearance;
+constexpr int kTorque = kStateTorque, kBacklash = kStateBacklash, kScale = kStateScale,
+              kClearance = kStateClearance;
 using Matrix = FilterStateMatrix;
 
 Matrix TransitionMatrix(const FilterTransition& t) {
   Matrix f = Matrix::Identity();
   f(kTorque, kTorque) = t.f_torque_torque;
+  f(kTorque, kScale) = t.f_torque_scale;
   f(kBacklash, kTorque) = t.f_backlash_torque;
   f(kBacklash, kBacklash) = t.f_backlash_backlash;
   f(kBacklash, kClearance) = t.f_backlash_clearance;

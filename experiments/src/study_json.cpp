@@ -138,11 +138,25 @@ Study ParseStudy(const std::string& text, const std::string& file) {
     s.identify = doc["identify"].get<bool>();
   }
   if (doc.contains("filter")) {  // the estimator's own options, not the plant's
-    r.Object(doc["filter"], "/filter", {{"deflection_model_error", false}});
-    if (doc["filter"].contains("deflection_model_error")) {
-      s.deflection_model_error =
-          r.Number(doc["filter"]["deflection_model_error"], "/filter/deflection_model_error",
-                   "(share of K·τ)", 0.0, 1.0);
+    const auto& filter = doc["filter"];
+    r.Object(filter, "/filter",
+             {{"deflection_model_error", false}, {"load_follows_motor", false},
+              {"inertial_torque_error", false}});
+    if (filter.contains("deflection_model_error")) {
+      s.deflection_model_error = r.Number(filter["deflection_model_error"],
+                                          "/filter/deflection_model_error", "(share of K·τ)", 0.0, 1.0);
+    }
+    if (filter.contains("load_follows_motor")) {
+      if (!filter["load_follows_motor"].is_boolean()) {
+        r.Fail("/filter/load_follows_motor",
+               "load_follows_motor must be true or false, found " + filter["load_follows_motor"].dump(),
+               "write true (a held load follows the motor) or false (a random walk)");
+      }
+      s.load_follows_motor = filter["load_follows_motor"].get<bool>();
+    }
+    if (filter.contains("inertial_torque_error")) {
+      s.inertial_torque_error = r.Number(filter["inertial_torque_error"],
+                                         "/filter/inertial_torque_error", "(share of J·θ̈)", 0.0, 10.0);
     }
   }
   if (doc.contains("scenario_set")) s.scenario_set = ReadSet(r, doc["scenario_set"], "/scenario_set");

@@ -189,6 +189,10 @@ TrialResult RunTrial(const Study& study, int trial) {
   options.shaft_damping_nm_s_per_rad = push.tip.shaft_damping_nm_s_per_rad;  // the arm's shafts
   InstrumentPrior(study, parameters, &options);
   options.deflection_model_error = study.deflection_model_error;  // NaN: the filter's default
+  options.load_follows_motor = study.load_follows_motor;
+  if (std::isfinite(study.inertial_torque_error)) {
+    options.inertial_torque_error = study.inertial_torque_error;
+  }
   estimation::FilterSmoother smoother(parameters, options);
 
   const io::StandardColumns c(log.header);

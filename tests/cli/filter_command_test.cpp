@@ -128,6 +128,21 @@ TEST(FilterCommand, TheDeflectionErrorWidensTheIntervals) {
                  "filter_command_deflection_bad");
 }
 
+// --no-load-following reaches the filter: a held load that no longer follows
+// the motor changes the corrected angles of the push's held rows. The
+// inertial torque's error κ is a share of J·θ̈: without --motor-inertia
+// (J = 0) no row changes; a negative κ is bad input.
+TEST(FilterCommand, TheHeldLoadModelAndTheInertialErrorReachTheFilter) {
+  const auto [differ, rows] =
+      RowsAFlagChanges("--no-load-following", "q1_corr", "filter_command_load_following");
+  EXPECT_GT(differ, rows / 10);
+  const auto [inertial, all] =
+      RowsAFlagChanges("--inertial-error 2", "q1_sd", "filter_command_inertial_error");
+  EXPECT_EQ(inertial, 0u);
+  EXPECT_GT(all, 1000u);
+  ExpectRejected("--inertial-error -1", "--inertial-error", "filter_command_inertial_bad");
+}
+
 TEST(FilterCommand, BadInputExitsTwoAndWritesNothing) {
   const auto dir = FreshDirectory("filter_command_bad");
   const auto out = dir / "out.csv";

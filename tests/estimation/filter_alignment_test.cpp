@@ -26,7 +26,8 @@ FilterOptions WithInertia(bool align) {
   FilterOptions o;
   o.motor_inertia_kg_m2 = kInertia;
   o.align_inertial_torque = align;
-  o.deflection_model_error = 0.0;  // the log below is drawn from the model
+  o.deflection_model_error = 0.0;  // the log below is drawn from the model,
+  o.inertial_torque_error = 0.0;    // its J·θ̈ a sinusoid the fit reads exactly once aligned
   return o;
 }
 

@@ -90,7 +90,7 @@ TEST(ShaftDamping, TheDeflectionErrorDefaultsByWhetherTheDampingIsGiven) {
   EXPECT_TRUE(std::isnan(o.deflection_model_error));
   EXPECT_DOUBLE_EQ(o.DeflectionModelError(), 0.08);
   o.shaft_damping_nm_s_per_rad = 0.02;
-  EXPECT_DOUBLE_EQ(o.DeflectionModelError(), 0.05);
+  EXPECT_DOUBLE_EQ(o.DeflectionModelError(), 0.04);
   o.deflection_model_error = 0.03;  // given: as given, damping or not
   EXPECT_DOUBLE_EQ(o.DeflectionModelError(), 0.03);
   std::string error;

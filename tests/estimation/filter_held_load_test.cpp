@@ -1,10 +1,13 @@
 // A held tip's load moves only as the motor bends the shaft
 // (FilterOptions::bound_held_load_rate, HeldLoadProcessVariance): the closed
 // form of its process variance, and what the bound does to the compliance
-// scale through a long steady hold (tests/support/steady_hold.h).
+// scale through a long steady hold (tests/support/steady_hold.h); the load
+// a held tip's motor adds, and the inertial torque's share of the effort noise.
 #include <cmath>
+#include <limits>
 #include <string>
 
+#include <ceres/jet.h>
 #include <gtest/gtest.h>
 
 #include "../support/steady_hold.h"
@@ -65,6 +68,36 @@ TEST(HeldLoadProcessVariance, OptionsAreValidated) {
   o.held_load_inertial_time_s = 0.02;
   o.held_load_rest_rate_nm = 0.0;  // a load that never drifts at rest is a valid claim
   EXPECT_TRUE(o.IsValid(&error));
+}
+
+// The motor's increment bends a shaft held on its wall: 0.6 mrad at
+// s·K = 1.1 × 0.06 rad/N·m is 0.6e-3 / 0.066 N·m; half held (g = 0.5), half of
+// that; its ∂/∂s (the filter's F entry, by Jet) is −tau_added/s.
+TEST(HeldLoadIncrement, IsTheBendOverTheComplianceAndItsScaleDerivative) {
+  EXPECT_NEAR(HeldLoadIncrement(1.0, 6e-4, 1.1, 0.06), 6e-4 / 0.066, 1e-15);
+  EXPECT_NEAR(HeldLoadIncrement(0.5, 6e-4, 1.1, 0.06), 0.5 * 6e-4 / 0.066, 1e-15);
+  EXPECT_EQ(HeldLoadIncrement(0.0, 6e-4, 1.1, 0.06), 0.0);  // unloaded: the encoder moves b
+  const ceres::Jet<double, 1> scale(1.1, 0);
+  const auto added = HeldLoadIncrement(1.0, 6e-4, scale, 0.06);
+  EXPECT_NEAR(added.v[0], -6e-4 / 0.066 / 1.1, 1e-15);
+}
+
+// The inertial torque's misread as effort variance: σ² + (κ·J·θ̈)².
+TEST(HeldEffortVariance, AddsTheInertialTorquesShare) {
+  FilterOptions o;
+  o.effort_noise_nm = 0.01;
+  o.inertial_torque_error = 0.3;
+  EXPECT_NEAR(HeldEffortVariance(o, 0.0), 1e-4, 1e-18);
+  EXPECT_NEAR(HeldEffortVariance(o, -0.1), 1e-4 + 0.03 * 0.03, 1e-18);
+  o.inertial_torque_error = 0.0;
+  EXPECT_NEAR(HeldEffortVariance(o, 0.1), 1e-4, 1e-18);
+  std::string error;
+  EXPECT_TRUE(o.IsValid(&error)) << error;
+  o.inertial_torque_error = -0.3;
+  EXPECT_FALSE(o.IsValid(&error));
+  EXPECT_NE(error.find("inertial_torque_error"), std::string::npos);
+  o.inertial_torque_error = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_FALSE(o.IsValid(&error));
 }
 
 // Joint 1 held 19 s at 1.5 w with the filter's effort noise (truth s = 1).

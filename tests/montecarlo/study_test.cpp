@@ -111,6 +111,19 @@ TEST(Study, SetsTheFiltersDeflectionError) {
   EXPECT_NE(plain.fingerprint, set.fingerprint);
 }
 
+// The held load's model and the inertial torque's error: the filter's
+// defaults unless the study sets them, and part of the fingerprint.
+TEST(Study, SetsTheHeldLoadModelAndTheInertialError) {
+  const Study plain = ParseStudy(StudyText(""), "a.json");
+  EXPECT_TRUE(plain.load_follows_motor);
+  EXPECT_TRUE(std::isnan(plain.inertial_torque_error));
+  const Study set = ParseStudy(
+      StudyText(R"(, "filter": {"load_follows_motor": false, "inertial_torque_error": 0})"), "a.json");
+  EXPECT_FALSE(set.load_follows_motor);
+  EXPECT_EQ(set.inertial_torque_error, 0.0);
+  EXPECT_NE(plain.fingerprint, set.fingerprint);
+}
+
 // Each bad study names its file, line and key.
 struct BadStudy {
   std::string extra;
@@ -145,7 +158,10 @@ INSTANTIATE_TEST_SUITE_P(
         BadStudy{",\n \"scenario_set\": [\"experiment.hold_s=-1\"]", 5, "scenario_set"},
         BadStudy{",\n \"filter\": {\"deflection_model_error\": -0.1}", 5,
                  "filter.deflection_model_error"},
-        BadStudy{",\n \"filter\": {\"gate\": 0.9}", 5, "gate"}),
+        BadStudy{",\n \"filter\": {\"gate\": 0.9}", 5, "gate"},
+        BadStudy{",\n \"filter\": {\"load_follows_motor\": 1}", 5, "load_follows_motor"},
+        BadStudy{",\n \"filter\": {\"inertial_torque_error\": -0.3}", 5,
+                 "filter.inertial_torque_error"}),
     [](const ::testing::TestParamInfo<BadStudy>& info) {
       std::string name;  // the key the message must name, as a test name
       for (char c : info.param.says) name += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';

@@ -100,6 +100,16 @@ struct FilterOptions {
   /// 1.5 w; with the bound 0.978; docs/filter.md, "A held load moves only as
   /// the motor bends the shaft"). false: σ_τ̇ alone, as a free tip's load has.
   bool bound_held_load_rate = true;
+  /// With the tip held, the motor's encoder increment Δq bends the shaft: the
+  /// load's prediction is tau + g·Δq/(s·K(L)) (HeldLoadIncrement, g the hold
+  /// of the sure load), the motion a known input rather than a random walk to
+  /// catch up with. Why: while a push ramps the load, a random-walk tau ran
+  /// behind the bend the encoder already showed; the same-sign innovation,
+  /// sample after sample, went into s (divot trial 658: s 1.00 → 1.29 in
+  /// 0.2 s against a true 1.02; with the input 1.06), and joint 1's interval
+  /// covered 91 % (docs/validation.md, Part 4, "The load follows the motor").
+  /// false: tau+ = tau, as a free tip's.
+  bool load_follows_motor = true;
   double held_load_rest_rate_nm = 0.01;   ///< σ_rest, N·m/√s: tissue relaxation, a slow slip
   /// m ≥ 1: the margin on the motor's increment for the error of s·K(L).
   double held_load_motion_margin = 2.0;
@@ -151,6 +161,14 @@ struct FilterOptions {
   /// 0 (the default): none; the simulator's instrument has 0.02.
   double shaft_damping_nm_s_per_rad = 0.0;
   double acceleration_filter_time_s = 0.004;
+  /// κ: the error of the fitted inertial torque as a fraction of it, effort
+  /// variance (κ·J·θ̈)² with the tip held (where J·θ̈ is taken out). Why:
+  /// the fit misreads the sharp accelerations of a stepped arm (the clamped
+  /// sweeps' 0.25 mm steps) by a share of J·θ̈ that the white effort noise
+  /// did not allow, and each step's misread moved s and the held tip
+  /// (clamped study: joint 1 covered 88.6 %, with κ 0.3 94.9 %; docs/
+  /// validation.md, Part 4, "The load follows the motor"). 0: the fit is exact.
+  double inertial_torque_error = 0.3;
   /// With motor inertia (J > 0), run the filter's state that many samples
   /// behind the newest one that the fitted acceleration's lag (under a
   /// constant jerk, MotorMotion::LagSeconds: 11.7 ms, 18 samples, at the
@@ -174,9 +192,9 @@ struct FilterOptions {
   /// by shaft_damping_nm_s_per_rad.
   double deflection_model_error = kFromDamping;
   static constexpr double kFromDamping = std::numeric_limits<double>::quiet_NaN();
-  static constexpr double kDeflectionErrorWithDamping = 0.05;
+  static constexpr double kDeflectionErrorWithDamping = 0.04;
   static constexpr double kDeflectionErrorWithoutDamping = 0.08;
-  /// ε in use: deflection_model_error, or when NaN 0.05 with the damping
+  /// ε in use: deflection_model_error, or when NaN 0.04 with the damping
   /// given (> 0) and 0.08 without.
   double DeflectionModelError() const {
     if (!std::isnan(deflection_model_error)) return deflection_model_error;
@@ -344,6 +362,7 @@ struct FilterJointState {
 struct FilterTransition {
   FilterStateVector predicted_mean = FilterStateVector::Zero();
   double f_torque_torque = 1.0;     ///< ∂tau+/∂tau: 0 when a release restarts the load
+  double f_torque_scale = 0.0;      ///< ∂tau+/∂s: the held load following the motor
   double f_backlash_torque = 0.0;   ///< ∂b+/∂tau
   double f_backlash_backlash = 1.0; ///< ∂b+/∂b
   double f_backlash_clearance = 0.0;  ///< ∂b+/∂e
@@ -425,6 +444,21 @@ double ScaleLearningFraction(const FilterOptions& options, double tau_nm, double
 double HeldLoadProcessVariance(const FilterOptions& options, double dt, double encoder_increment,
                                double compliance_rad_per_nm, double inertial_torque_nm,
                                double hold);
+
+/// The load a held tip's motor adds in one step (N·m): the encoder increment
+/// Δq (rad) bends a shaft held on its wall by g·Δq (hold g in [0, 1]; inside
+/// the clearance the rest moves b), so tau moves by g·Δq/(s·K(L)), K(L) in
+/// rad/N·m. Templated so that the filter's Jacobian (∂/∂s) comes from Jets;
+/// shared with the bench's dense baselines.
+template <typename T>
+T HeldLoadIncrement(double hold, double encoder_increment_rad, const T& scale,
+                    double compliance_rad_per_nm) {
+  return hold * encoder_increment_rad / (scale * compliance_rad_per_nm);
+}
+
+/// The effort's variance (N·m²) with the tip held: σ_effort² + (κ·J·θ̈)²,
+/// κ = inertial_torque_error, J·θ̈ the fitted inertial torque (N·m).
+double HeldEffortVariance(const FilterOptions& options, double inertial_torque_nm);
 
 /// The fraction r of its wall an unloaded shaft forgets in a step of dt with
 /// this encoder increment: 1 − e^(−dt/T), weighted by min(1, |Δq|/3 counts).

@@ -76,8 +76,12 @@ struct Study {
   std::vector<Scenario> calibration;
   /// The filter's and smoother's deflection-model error ε
   /// (estimation::FilterOptions::deflection_model_error); NaN: the filter's
-  /// default for the arm (0.05 with the shaft's damping, else 0.08).
+  /// default for the arm (0.04 with the shaft's damping, else 0.08).
   double deflection_model_error = std::numeric_limits<double>::quiet_NaN();
+  /// FilterOptions::load_follows_motor and inertial_torque_error (κ); the
+  /// filter's defaults (true; NaN: 0.3) unless the study's "filter" sets them.
+  bool load_follows_motor = true;
+  double inertial_torque_error = std::numeric_limits<double>::quiet_NaN();
   int trials = 100;
   std::uint64_t seed = 1;
   /// FNV-1a 64 of the study (without "trials") and of the scenario file's
