@@ -26,7 +26,8 @@ const char* SampledQuantityName(int quantity) {
   static const char* const kNames[kSampledQuantities] = {
       "compliance_scale1", "compliance_scale2", "backlash1_rad",  "backlash2_rad",
       "bias_offset1_nm",   "bias_offset2_nm",   "effort_sd_nm",   "depth_m",
-      "direction_deg",     "peak_torque_nm",    "speed_rad_s"};
+      "direction_deg",     "peak_torque_nm",    "speed_rad_s",    "shaft_start1",
+      "shaft_start2"};
   return kNames[quantity];
 }
 
@@ -59,9 +60,13 @@ double TrialStream::Uniform() {
 
 TrialDraw DrawTrial(const Study& study, TrialStream& stream) {
   TrialDraw draw;
-  for (int q = 0; q < kSampledQuantities; ++q) draw.values[q] = study.quantities[q].Quantile(stream.Uniform());
+  for (int q = 0; q < kShaftStart1; ++q) draw.values[q] = study.quantities[q].Quantile(stream.Uniform());
   draw.simulation_seed = stream.Next();
   draw.nees_pick = stream.Uniform();
+  for (int q = kShaftStart1; q < kSampledQuantities; ++q) {
+    const Distribution& d = study.quantities[q];
+    draw.values[q] = d.kind == Distribution::Kind::kConstant ? d.a : d.Quantile(stream.Uniform());
+  }
   return draw;
 }
 

@@ -35,6 +35,7 @@ constexpr QuantitySpec kSpecs[] = {
     {"contact", "direction_deg", kDirectionDeg, false, "deg", -360.0, 360.0},
     {"contact", "peak_torque_nm", kPeakTorqueNm, false, "N·m", 0.01, 3.0},
     {"contact", "speed_rad_s", kSpeedRadS, false, "rad/s", 1e-4, 2.0},
+    {"instrument", "shaft_start", kShaftStart1, true, "(share of the clearance)", -1.0, 1.0},
 };
 
 // A bare number (constant) or {"uniform": [min, max]}, {"normal": [mean, sd]},
@@ -213,6 +214,9 @@ Study ParseStudy(const std::string& text, const std::string& file) {
   for (int j = 0; j < 2; ++j) {
     s.quantities[kComplianceScale1 + j].a = 1.0;
     s.quantities[kBacklash1Rad + j].a = base.truth.joints[j].backlash_rad;
+    const double clearance = base.truth.joints[j].backlash_rad;
+    s.quantities[kShaftStart1 + j].a =
+        clearance > 0.0 ? base.truth.initial_shaft_offset_rad[j] / clearance : 0.0;
   }
   s.quantities[kEffortNoiseSdNm].a = base.sensors.effort_noise_sd_nm;
   if (clamped) {  // a sweep at one depth up to an effort limit: no direction, no speed

@@ -149,6 +149,9 @@ Truth TrialTruth(const Study& study, const TrialDraw& draw) {
     ScaleCompliance(joint.compliance, draw.values[kComplianceScale1 + j]);
     joint.backlash_rad = draw.values[kBacklash1Rad + j];
     for (double& v : joint.bias_torque.torque_nm) v += draw.values[kBiasOffset1Nm + j];
+    // Inside the clearance: the scenario refuses a shaft that starts on a wall.
+    truth.initial_shaft_offset_rad[j] =
+        0.999 * std::clamp(draw.values[kShaftStart1 + j], -1.0, 1.0) * joint.backlash_rad;
   }
   return truth;
 }

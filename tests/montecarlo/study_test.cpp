@@ -160,6 +160,7 @@ INSTANTIATE_TEST_SUITE_P(
                  "filter.deflection_model_error"},
         BadStudy{",\n \"filter\": {\"gate\": 0.9}", 5, "gate"},
         BadStudy{",\n \"filter\": {\"load_follows_motor\": 1}", 5, "load_follows_motor"},
+        BadStudy{",\n \"instrument\": {\"shaft_start\": 1.5}", 5, "instrument.shaft_start"},
         BadStudy{",\n \"filter\": {\"inertial_torque_error\": -0.3}", 5,
                  "filter.inertial_torque_error"}),
     [](const ::testing::TestParamInfo<BadStudy>& info) {

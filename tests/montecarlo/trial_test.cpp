@@ -1,6 +1,7 @@
 // One trial (montecarlo_trial.h): the drawn instrument is the one simulated,
 // a trial is a pure function of (study, k), and the corrections do what the
 // physics says against the simulator's truth.
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -49,6 +50,38 @@ TEST(TrialTruth, ScalesComplianceAndSetsBacklashAndBias) {
   const auto& after = truth.joints[1].bias_torque.torque_nm;
   ASSERT_EQ(before.size(), after.size());
   for (std::size_t i = 0; i < before.size(); ++i) EXPECT_NEAR(after[i] - before[i], 0.05, 1e-15);
+}
+
+// The shaft's start is drawn after everything a study drew before it, and
+// only when the study draws it: the same seed gives the same instrument,
+// contact, simulation seed and NEES pick with or without it. The truth then
+// starts each shaft at that share of its clearance (0.999 of it at most:
+// inside, as the scenario requires).
+TEST(TrialTruth, StartsEachShaftWhereTheStudyDrewIt) {
+  const Study centred = ShortStudy(R"({"backlash_rad": {"uniform": [0.006, 0.010]}})");
+  const Study anywhere = ShortStudy(
+      R"({"backlash_rad": {"uniform": [0.006, 0.010]}, "shaft_start": {"uniform": [-1, 1]}})");
+  for (int k = 0; k < 4; ++k) {
+    TrialStream a(centred.seed, k), b(anywhere.seed, k);
+    const TrialDraw da = DrawTrial(centred, a), db = DrawTrial(anywhere, b);
+    for (int q = 0; q < kShaftStart1; ++q) EXPECT_EQ(da.values[q], db.values[q]) << q;
+    EXPECT_EQ(da.simulation_seed, db.simulation_seed);
+    EXPECT_EQ(da.nees_pick, db.nees_pick);
+    for (int j = 0; j < 2; ++j) {
+      EXPECT_EQ(da.values[kShaftStart1 + j], 0.0);
+      EXPECT_GE(db.values[kShaftStart1 + j], -1.0);
+      EXPECT_LE(db.values[kShaftStart1 + j], 1.0);
+      const Truth truth = TrialTruth(anywhere, db);
+      EXPECT_DOUBLE_EQ(truth.initial_shaft_offset_rad[j],
+                       0.999 * db.values[kShaftStart1 + j] * db.values[kBacklash1Rad + j]);
+      EXPECT_EQ(TrialTruth(centred, da).initial_shaft_offset_rad[j], 0.0);
+    }
+  }
+  TrialStream c(anywhere.seed, 0);
+  TrialDraw edge = DrawTrial(anywhere, c);
+  edge.values[kShaftStart1] = -1.0;
+  EXPECT_LT(std::abs(TrialTruth(anywhere, edge).initial_shaft_offset_rad[0]),
+            edge.values[kBacklash1Rad]);
 }
 
 TEST(NominalParameters, HoldTheBiasTableAtThePushDepth) {
@@ -115,6 +148,10 @@ TEST(RunTrial, TheHeldLoadFollowsTheMotor) {
   const std::string file = PLIANT_SOURCE_DIR "/experiments/studies/divot_study.json";
   std::ifstream in(file);
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  // The shafts start in the middle, as the study drew them when these trials were traced.
+  const std::string anywhere = R"("shaft_start": {"uniform": [-1, 1]})";
+  ASSERT_NE(text.find(anywhere), std::string::npos);
+  text.replace(text.find(anywhere), anywhere.size(), R"("shaft_start": 0)");
   const Study follows = ParseStudy(text, file);
   text.insert(text.find("\"identify\""), "\"filter\": {\"load_follows_motor\": false},\n  ");
   const Study walk = ParseStudy(text, file);

@@ -51,6 +51,12 @@ enum SampledQuantity {
   kDirectionDeg,      ///< push direction in the (tau1, tau2) plane
   kPeakTorqueNm,      ///< divot: the push's peak; clamped beam: the sweep's effort limit
   kSpeedRadS,
+  /// Where each shaft starts in its clearance, a share of the drawn clearance
+  /// in [−1, 1] (0: the middle, the simulator's default). Drawn after the
+  /// simulation seed and the NEES pick, and only when not constant, so that
+  /// a study without it draws what it drew before.
+  kShaftStart1,
+  kShaftStart2,
   kSampledQuantities
 };
 
