@@ -482,13 +482,16 @@ void ComplianceFilter::Impl::StepState(const FilterSample& sample) {
     // With it, the shaft's damping, in proportion to how firmly the load the
     // filter is sure of holds the shaft on its wall (the prediction's hold;
     // the simulator's is all or nothing, by contact).
+    // The fitted J·θ̈ is also what the effort's variance allows a share of
+    // to be misread (HeldEffortVariance).
+    const double inertial_torque = sample.tip_fixed ? motion[j].InertialTorque(options) : 0.0;
     const double inertial =
-        sample.tip_fixed ? motion[j].InertialTorque(options) +
+        sample.tip_fixed ? inertial_torque +
                                models::ShaftDampingTorque(options.shaft_damping_nm_s_per_rad,
                                                           bend_rate_rad_s[j], step_hold[j])
                          : 0.0;
     const double variance = sample.tip_fixed
-                                ? HeldEffortVariance(options, motion[j].InertialTorque(options))
+                                ? HeldEffortVariance(options, inertial_torque)
                                 : options.effort_noise_nm * options.effort_noise_nm;
     ScalarUpdate(j, kEffortChannel, Vector::Unit(kTorque) + Vector::Unit(kOffset),
                  effort - tau0 - inertial - joint[j].mean[kTorque] - joint[j].mean[kOffset],

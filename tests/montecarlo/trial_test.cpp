@@ -3,12 +3,11 @@
 // physics says against the simulator's truth.
 #include <cmath>
 #include <cstring>
-#include <fstream>
-#include <iterator>
 #include <string>
 
 #include <gtest/gtest.h>
 
+#include "../support/run_command.h"
 #include "pliant/experiments/montecarlo_trial.h"
 #include "pliant/io/input_error.h"
 #include "pliant/models/parameters.h"
@@ -146,8 +145,7 @@ TEST(RunTrial, TheStudysDeflectionErrorReachesTheFilter) {
 // 0.404, 100 / 18 %; 106 0.372 / 0.540, 100 / 57 %.
 TEST(RunTrial, TheHeldLoadFollowsTheMotor) {
   const std::string file = PLIANT_SOURCE_DIR "/experiments/studies/divot_study.json";
-  std::ifstream in(file);
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::string text = testing::ReadText(file);
   // The shafts start in the middle, as the study drew them when these trials were traced.
   const std::string anywhere = R"("shaft_start": {"uniform": [-1, 1]})";
   ASSERT_NE(text.find(anywhere), std::string::npos);
