@@ -248,7 +248,20 @@ Study ParseStudy(const std::string& text, const std::string& file) {
         checked.lower = base.truth.joints[0].depth_min_m;
         checked.upper = base.truth.joints[0].depth_max_m;
       }
-      const auto d = ReadDistribution(r, doc[section][spec.key], ps + "/" + spec.key, checked);
+      const json& value = doc[section][spec.key];
+      const std::string pk = ps + "/" + spec.key;
+      if (spec.per_joint && value.is_array()) {  // [joint 1's, joint 2's]: instruments differ per joint
+        if (value.size() != 2) {
+          r.Fail(pk, r.Dotted(pk) + " must hold two distributions (joint 1, joint 2), found " +
+                         std::to_string(value.size()),
+                 "write [joint 1's, joint 2's], or one distribution for both joints");
+        }
+        for (int j = 0; j < 2; ++j) {
+          s.quantities[spec.first + j] = ReadDistribution(r, value[j], pk + "/" + std::to_string(j), checked);
+        }
+        continue;
+      }
+      const auto d = ReadDistribution(r, value, pk, checked);
       s.quantities[spec.first] = d;
       if (spec.per_joint) s.quantities[spec.first + 1] = d;
     }

@@ -91,6 +91,26 @@ TEST(Study, DivotStudyDrawsWhatItDeclares) {
   EXPECT_GT(max_depth, 0.199);
 }
 
+// A per-joint key takes one distribution for both joints or a pair, joint 1's
+// then joint 2's: the shipped studies draw each clearance around its own
+// nominal value (the dVRK file's 0.008478 and 0.007176 rad).
+TEST(Study, EachJointMayDrawFromItsOwnDistribution) {
+  const Study study = ParseStudy(
+      StudyText(R"(, "instrument": {"backlash_rad": [{"uniform": [0.0065, 0.0105]}, 0.007]})"), "a.json");
+  EXPECT_EQ(study.quantities[kBacklash1Rad].kind, Distribution::Kind::kUniform);
+  EXPECT_EQ(study.quantities[kBacklash1Rad].a, 0.0065);
+  EXPECT_EQ(study.quantities[kBacklash1Rad].b, 0.0105);
+  EXPECT_EQ(study.quantities[kBacklash2Rad].kind, Distribution::Kind::kConstant);
+  EXPECT_EQ(study.quantities[kBacklash2Rad].a, 0.007);
+  const Study shipped = ReadStudy(kStudies + "divot_study.json");
+  for (int k = 0; k < 500; ++k) {
+    TrialStream stream(shipped.seed, k);
+    const TrialDraw draw = DrawTrial(shipped, stream);
+    ASSERT_NEAR(draw.values[kBacklash1Rad], 0.008478, 0.002 + 1e-12) << "trial " << k;
+    ASSERT_NEAR(draw.values[kBacklash2Rad], 0.007176, 0.002 + 1e-12) << "trial " << k;
+  }
+}
+
 TEST(Study, TheTrialCountDoesNotChangeTheFingerprint) {
   const Study a = ParseStudy(StudyText(""), "a.json");
   Study b = ParseStudy(StudyText("").replace(StudyText("").find("10,"), 3, "99,"), "a.json");
@@ -161,6 +181,10 @@ INSTANTIATE_TEST_SUITE_P(
         BadStudy{",\n \"filter\": {\"gate\": 0.9}", 5, "gate"},
         BadStudy{",\n \"filter\": {\"load_follows_motor\": 1}", 5, "load_follows_motor"},
         BadStudy{",\n \"instrument\": {\"shaft_start\": 1.5}", 5, "instrument.shaft_start"},
+        BadStudy{",\n \"instrument\": {\"backlash_rad\": [0.007]}", 5, "two distributions"},
+        BadStudy{",\n \"instrument\": {\"backlash_rad\": [0.007, {\"uniform\": [0.01, 0.005]}]}", 5,
+                 "instrument.backlash_rad.1.uniform"},
+        BadStudy{",\n \"noise\": {\"effort_sd_nm\": [0.01, 0.02]}", 5, "noise.effort_sd_nm"},
         BadStudy{",\n \"filter\": {\"inertial_torque_error\": -0.3}", 5,
                  "filter.inertial_torque_error"}),
     [](const ::testing::TestParamInfo<BadStudy>& info) {

@@ -146,10 +146,15 @@ TEST(RunTrial, TheStudysDeflectionErrorReachesTheFilter) {
 TEST(RunTrial, TheHeldLoadFollowsTheMotor) {
   const std::string file = PLIANT_SOURCE_DIR "/experiments/studies/divot_study.json";
   std::string text = testing::ReadText(file);
-  // The shafts start in the middle, as the study drew them when these trials were traced.
-  const std::string anywhere = R"("shaft_start": {"uniform": [-1, 1]})";
-  ASSERT_NE(text.find(anywhere), std::string::npos);
-  text.replace(text.find(anywhere), anywhere.size(), R"("shaft_start": 0)");
+  // The instruments as the study drew them when these trials were traced: the
+  // shafts start in the middle, both clearances on [0.006, 0.010] rad.
+  const auto replace = [&](const std::string& now, const std::string& then) {
+    ASSERT_NE(text.find(now), std::string::npos) << now;
+    text.replace(text.find(now), now.size(), then);
+  };
+  replace(R"("shaft_start": {"uniform": [-1, 1]})", R"("shaft_start": 0)");
+  replace(R"("backlash_rad": [{"uniform": [0.006478, 0.010478]}, {"uniform": [0.005176, 0.009176]}])",
+          R"("backlash_rad": {"uniform": [0.006, 0.010]})");
   const Study follows = ParseStudy(text, file);
   text.insert(text.find("\"identify\""), "\"filter\": {\"load_follows_motor\": false},\n  ");
   const Study walk = ParseStudy(text, file);
