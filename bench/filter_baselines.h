@@ -8,9 +8,9 @@
 //                      dense Joseph form (I − K H) P (I − K H)ᵀ + K R Kᵀ.
 //   DenseDynamicEkf  — the same with Eigen::MatrixXd / VectorXd.
 // Like the filter: the seating bound when a free tip is held, s, e and beta
-// as consider states (zero gain) while the tip is free, and beta with the tip
-// held too. No gating, mismatch test, release or reference channel: the bench
-// feeds clean data.
+// as consider states (zero gain) while the tip is free, e with the tip held
+// until a wall is pressed, beta but in the unloaded start. No gating,
+// mismatch test, release or reference channel: the bench feeds clean data.
 // Header-only so that a test can check the fast filter against it.
 
 #include <algorithm>
@@ -193,15 +193,19 @@ class DenseEkf {
         p_(kS * j + 3, kS * j + 3) = o.compliance_scale_sd * o.compliance_scale_sd;
         p_(kS * j + 4, kS * j + 4) = model_.ClearanceVariance(j);
         p_(kS * j + 5, kS * j + 5) = model_.OffsetVariance(j);
+        if (estimation::InUnloadedStart(o, 0.0)) {
+          x_.template segment<kS>(kS * j) << s.encoder_rad[j], 0.0, 0.0, 1.0, 0.0, 0.0;
+        }
       }
       initialised_ = true;
-      last_time_ = s.time_s;
+      start_time_ = last_time_ = s.time_s;
       last_encoder_ = s.encoder_rad;
     } else {
       // The seating bound, per joint: without a coupling effect the joints'
       // cross-covariance is zero, so the 12-state bound is the two 6-state ones.
       if (s.tip_fixed && !last_tip_fixed_) {
         for (int j = 0; j < 2; ++j) {
+          walls_[j].Seat();
           estimation::FilterStateMatrix block = p_.template block<kS, kS>(kS * j, kS * j);
           estimation::SeatingBound(&block, o.seating_bound_weight);
           p_.template block<kS, kS>(kS * j, kS * j) = block;
@@ -235,6 +239,9 @@ class DenseEkf {
     for (int j = 0; j < 2; ++j) {
       const int t = kS * j + 1;
       model_.sure_load_[j] = estimation::SureLoad(model_.options(), x_[t], p_(t, t));
+      if (s.tip_fixed) {
+        walls_[j].Observe(models::BacklashHold(model_.sure_load_[j], model_.width(j)));
+      }
       model_.inertial_torque_[j] = motion_[j].InertialTorque(model_.options());
       model_.increment_peak_[j] = motion_[j].increment_peak_rad;
     }
@@ -261,6 +268,12 @@ class DenseEkf {
   void Update(const estimation::FilterSample& s) {
     const auto& o = model_.options();
     Jet8 x[kN], z[4];
+    const bool unloaded = estimation::InUnloadedStart(o, s.time_s - start_time_);
+    for (int j = 0; unloaded && j < 2; ++j) {  // the load known: 0
+      x_[kS * j + 1] = 0.0;
+      p_.row(kS * j + 1).setZero();
+      p_.col(kS * j + 1).setZero();
+    }
     for (int i = 0; i < kN; ++i) x[i] = Jet8(x_[i], i);
     model_.Measure(x, s.insertion_depth_m, z);
     typename Types::M48 h(4, kN);
@@ -294,11 +307,16 @@ class DenseEkf {
     const typename Types::M84 ph = p_ * h.transpose();
     const typename Types::M44 innovation_cov = h * ph + r;
     typename Types::M84 gain = innovation_cov.ldlt().solve(ph.transpose()).transpose();
-    if (!s.tip_fixed) {  // consider states (Schmidt–Kalman): s, e and beta keep their prior
-      for (int j = 0; j < 2; ++j) gain.middleRows(kS * j + estimation::kStateScale, 3).setZero();
+    // Consider states (Schmidt–Kalman), as in the filter: with the tip free s
+    // and e; held, e until the hold has pressed a wall; beta always but in
+    // the unloaded start.
+    for (int j = 0; j < 2; ++j) {
+      if (!s.tip_fixed) gain.row(kS * j + estimation::kStateScale).setZero();
+      if (!s.tip_fixed || (o.clearance_needs_a_wall && !walls_[j].TeachClearance())) {
+        gain.row(kS * j + estimation::kStateClearance).setZero();
+      }
+      if (!unloaded) gain.row(kS * j + estimation::kStateEffortOffset).setZero();
     }
-    // beta is a consider state with the tip held too, as in the filter.
-    for (int j = 0; j < 2; ++j) gain.row(kS * j + estimation::kStateEffortOffset).setZero();
     x_ += gain * innovation;
     const Matrix a = Matrix::Identity(kN, kN) - gain * h;
     p_ = (a * p_ * a.transpose() + gain * r * gain.transpose()).eval();
@@ -316,7 +334,8 @@ class DenseEkf {
   Matrix p_;
   bool initialised_ = false;
   bool last_tip_fixed_ = false;
-  double last_time_ = 0.0;
+  double last_time_ = 0.0, start_time_ = 0.0;
+  estimation::ClearanceWalls walls_[2];
   Eigen::Vector2d last_encoder_{0.0, 0.0};
   estimation::MotorMotion motion_[2];
   double bend_rate_[2] = {0.0, 0.0};  // the encoder's rate over the step, rad/s

@@ -21,6 +21,7 @@ struct FilterCommandOptions {
   bool smooth = false;
   bool skip_bad_rows = false;
   estimation::FilterOptions filter;
+  bool effort_offset_given = false;
 };
 
 void PrintAccuracy(const char* label, const estimation::TipErrorStatistics& s) {
@@ -74,7 +75,12 @@ io::InputError OptionError(const std::string& error) {
   return io::InputError(option, 0, 0, problem, fix);
 }
 
-void RunFilter(const FilterCommandOptions& o) {
+void RunFilter(FilterCommandOptions o) {
+  // A tare needs an offset to learn: unless told its σ, β is on, its σ the
+  // parameters' (filter.h: NaN), as --effort-offset-sd nan would ask.
+  if (o.filter.unloaded_start_s > 0.0 && !o.effort_offset_given) {
+    o.filter.effort_offset_sd_nm.setConstant(estimation::FilterOptions::kFromParameters);
+  }
   const auto parameters = io::ReadParameters(o.params_path);
   std::string error;
   if (!o.filter.IsValid(&error)) throw OptionError(error);
@@ -153,9 +159,19 @@ Command AddFilterCommand(CLI::App& app) {
          "σ of the clearance δ about the parameters' value, rad (default: the parameters' "
          "covariance, else 1e-3; 0: known exactly)");
   sub->add_option_function<double>(
-         "--effort-offset-sd", [&f](double sd) { f.effort_offset_sd_nm.setConstant(sd); },
+         "--effort-offset-sd",
+         [o](double sd) {
+           o->filter.effort_offset_sd_nm.setConstant(sd);
+           o->effort_offset_given = true;
+         },
          "σ of a constant effort offset the bias torque misses, N·m (default 0: off, "
          "better on held-tip logs, docs/filter.md; nan: the parameters' covariance, else 0.02)");
+  sub->add_option("--unloaded-start", f.unloaded_start_s,
+                  "Seconds at the log's start with the instrument untouched and the arm still "
+                  "(e.g. before it approaches the tissue): the efforts there tare the effort "
+                  "offset β, which is then on (σ from --effort-offset-sd, else the parameters' "
+                  "covariance, else 0.02 N·m; 0: no such span; docs/filter.md)")
+      ->capture_default_str();
   sub->add_option("--output-step-limit", f.output_step_limit_counts,
                   "Encoder counts the corrected angle may move per step beyond the encoder's own "
                   "change (no jumps for a control loop; q_sd includes the gap; inf: off)")

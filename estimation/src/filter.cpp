@@ -110,6 +110,7 @@ void ComplianceFilter::Impl::Reset() {
     for (int& r : rejections[j]) r = 0;
     motion[j] = MotorMotion{};
     bend_rate_rad_s[j] = step_hold[j] = 0.0;
+    walls[j].Seat();
     restart_output[j] = true;
   }
   std::fill(window_nis.begin(), window_nis.end(), 0.0);
@@ -135,10 +136,13 @@ void ComplianceFilter::Impl::Initialise(const FilterSample& sample, double depth
     const double b = delta[j] * models::SmoothSaturation(sure / width[j]);
     const double tip = q - b - models::ComplianceAt(parameters.joints[j], depth_m) * tau;
     joint[j].mean << tip, tau, b, 1.0, 0.0, 0.0;
+    // Unloaded: the effort's departure from tau0 is β's, for the updates to find.
+    if (InUnloadedStart(options, 0.0)) joint[j].mean << q, 0.0, 0.0, 1.0, 0.0, 0.0;
     joint[j].covariance = PriorCovariance(options, delta[j], uncertainty[j]);
     transition[j] = FilterTransition{};
     transition[j].predicted_mean = joint[j].mean;
   }
+  start_time_s = sample.time_s;
   initialised = true;
 }
 
@@ -167,6 +171,8 @@ void ComplianceFilter::Impl::Predict(int j, double dt, bool tip_fixed, bool seat
   const double sure_load = SureLoad(o, s.mean[kTorque], s.covariance(kTorque, kTorque));
   const double hold = models::BacklashHold(sure_load, width[j]);
   step_hold[j] = hold;
+  if (seated) walls[j].Seat();
+  if (tip_fixed) walls[j].Observe(hold);
   const StateJet next = models::BacklashHysteresisStep(b, tau, clearance, width[j], relax, hold);
   // How firmly the load holds the shaft on a wall: S² = 1 beyond the width,
   // 0 at no load (BacklashProcessVariance).
@@ -253,6 +259,7 @@ void ComplianceFilter::Impl::Release(int j, double dt, double encoder_increment)
   s.mean[kTorque] = 0.0;
   s.mean[kBacklash] *= keep;
   step_hold[j] = 0.0;
+  walls[j].Seat();  // held elsewhere: the shaft starts anew
   Matrix& P = s.covariance;
   P.row(kTorque).setZero();
   P.col(kTorque).setZero();
@@ -297,7 +304,7 @@ void ComplianceFilter::Impl::EncoderModel(double depth_m, Eigen::Vector2d* predi
 // world has changed (a slip, a new contact) and the filter must follow it.
 void ComplianceFilter::Impl::ScalarUpdate(int j, Channel channel, const Vector& h,
                                           double innovation, double variance, StepTally* tally,
-                                          bool implausible, Consider consider) {
+                                          bool implausible, unsigned consider) {
   FilterJointState& s = joint[j];
   Matrix& P = s.covariance;
   Vector u = P * h;
@@ -340,7 +347,10 @@ void ComplianceFilter::Impl::ScalarUpdate(int j, Channel channel, const Vector& 
   // through the Joseph form below). With a gain they drifted over a long
   // free log on tiny correlations with the tip (s 1 → 0.82 over 2 M samples
   // of the clamped sweep; validation.md). A reference still teaches them.
-  if (consider == kConsiderInstrument) k[kScale] = k[kClearance] = k[kOffset] = 0.0;
+  if (consider & kConsiderScale) k[kScale] = 0.0;
+  // e, likewise, while the tip is free; held, until the hold's load has
+  // pressed the shaft against a wall (clearance_needs_a_wall says why).
+  if (consider & kConsiderClearance) k[kClearance] = 0.0;
   // β is a consider state of a held tip's encoder and effort too, but for
   // samples with a reference. A held tip cannot tell β from the load: across
   // a clamped sweep the encoders fix s (the slope), e (wall to wall) and only
@@ -350,8 +360,9 @@ void ComplianceFilter::Impl::ScalarUpdate(int j, Channel channel, const Vector& 
   // against a true −0.019, and the held tip 270 encoder counts off with a σ
   // of 48; the clamped study's NEES 7.8, with this 1.9; docs/validation.md
   // Part 4, "The bias offset as a consider state"). A reference (the tip
-  // known) breaks the tie, and then the encoder and effort teach β.
-  if (consider == kConsiderOffset) k[kOffset] = 0.0;
+  // known) breaks the tie, and then the encoder and effort teach β; so does
+  // a load known to be 0 (unloaded_start_s).
+  if (consider & kConsiderOffset) k[kOffset] = 0.0;
   // Joseph form for one scalar, P+ = (I − k hᵀ) P (I − k hᵀ)ᵀ + k r kᵀ, which
   // for any gain k (not only the optimal one) expands exactly to
   //   P+ = P − k uᵀ − u kᵀ + S k kᵀ = P + k vᵀ + v kᵀ,   v = S k / 2 − u.
@@ -461,6 +472,7 @@ void ComplianceFilter::Impl::StepState(const FilterSample& sample) {
   }
   // Efforts: tau_meas − tau0(q_enc, L) = tau + beta (tau0 is evaluated at the
   // measured angle, an input, so its row is the unit vectors of tau and beta).
+  const bool unloaded = InUnloadedStart(options, sample.time_s - start_time_s);
   for (int j = 0; j < 2; ++j) {
     const double effort = sample.effort_nm[j];
     if (!std::isfinite(effort)) {
@@ -493,9 +505,14 @@ void ComplianceFilter::Impl::StepState(const FilterSample& sample) {
     const double variance = sample.tip_fixed
                                 ? HeldEffortVariance(options, inertial_torque)
                                 : options.effort_noise_nm * options.effort_noise_nm;
+    if (unloaded) {  // the load is known: 0, with no doubt
+      joint[j].mean[kTorque] = 0.0;
+      joint[j].covariance.row(kTorque).setZero();
+      joint[j].covariance.col(kTorque).setZero();
+    }
     ScalarUpdate(j, kEffortChannel, Vector::Unit(kTorque) + Vector::Unit(kOffset),
                  effort - tau0 - inertial - joint[j].mean[kTorque] - joint[j].mean[kOffset],
-                 variance, &tally, false, ConsiderFor(sample, j));
+                 variance, &tally, false, ConsiderFor(sample, j, unloaded));
   }
   // Encoders, linearised at the state the efforts just updated.
   Eigen::Vector2d predicted;
@@ -510,7 +527,8 @@ void ComplianceFilter::Impl::StepState(const FilterSample& sample) {
     h[j][kScale] *= sure_fraction[j];
     ScalarUpdate(j, kEncoderChannel, h[j], sample.encoder_rad[j] - predicted[j],
                  options.encoder_noise_rad * options.encoder_noise_rad + deflection * deflection,
-                 &tally, implausible_jump[j] && !sample.tip_fixed, ConsiderFor(sample, j));
+                 &tally, implausible_jump[j] && !sample.tip_fixed,
+                 ConsiderFor(sample, j, unloaded));
   }
   for (int j = 0; j < 2; ++j) {
     const double ref = sample.reference_rad[j];

@@ -106,16 +106,25 @@ struct ComplianceFilter::Impl {
   void Predict(int j, double dt, bool tip_fixed, bool seated, double encoder_increment);
   void Release(int j, double dt, double encoder_increment);
   void EncoderModel(double depth, Eigen::Vector2d* predicted, Vector* h) const;
-  /// Which states an update may not move (Schmidt–Kalman consider states):
-  /// none, β alone (a held tip without a reference), or s, e and β (a free tip).
-  enum Consider { kLearnAll, kConsiderOffset, kConsiderInstrument };
-  static Consider ConsiderFor(const FilterSample& sample, int j) {
-    if (!sample.tip_fixed) return kConsiderInstrument;
-    return std::isfinite(sample.reference_rad[j]) ? kLearnAll : kConsiderOffset;
+  /// Which states an update may not move (Schmidt–Kalman consider states),
+  /// a mask of these bits (ScalarUpdate says why for each).
+  enum Consider : unsigned {
+    kLearnAll = 0,
+    kConsiderScale = 1,
+    kConsiderClearance = 2,
+    kConsiderOffset = 4,
+  };
+  unsigned ConsiderFor(const FilterSample& sample, int j, bool unloaded) const {
+    if (std::isfinite(sample.reference_rad[j]) && sample.tip_fixed) return kLearnAll;
+    // The unloaded start's effort teaches β; nothing else does without a reference.
+    const unsigned offset = unloaded ? 0u : unsigned(kConsiderOffset);
+    if (!sample.tip_fixed) return kConsiderScale | kConsiderClearance | offset;
+    const bool travelling = options.clearance_needs_a_wall && !walls[j].TeachClearance();
+    return (travelling ? unsigned(kConsiderClearance) : 0u) | offset;
   }
   void ScalarUpdate(int j, Channel channel, const Vector& h, double innovation,
                     double variance, StepTally* tally, bool implausible = false,
-                    Consider consider = kLearnAll);
+                    unsigned consider = kLearnAll);
   void Repair(int j, const FilterSample& sample, bool full_check, StepTally* tally);
   void UpdateWindow(StepTally* tally);
   /// K_j(L) at the current depth, rad/N·m, evaluated again only when the depth changes.
@@ -158,6 +167,8 @@ struct ComplianceFilter::Impl {
   // The hold g of the sure load at this step's prediction (0 before one, or
   // after a release): the backlash step's and the damping term's.
   double step_hold[2] = {0.0, 0.0};
+  ClearanceWalls walls[2];  // a wall pressed since the tip was seated
+  double start_time_s = 0.0;  // the first sample's, for unloaded_start_s
   bool motion_started = false;
   SampleClock motion_clock;  // between the newest samples
   Eigen::Vector2d newest_step{0.0, 0.0};  // the newest sample's encoder change (0 when not motion)

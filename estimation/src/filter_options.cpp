@@ -86,6 +86,11 @@ bool FilterOptions::IsValid(std::string* error) const {
     return Fail(error, "FilterOptions::effort_offset_rate_nm must be finite and >= 0 — N·m/√s, "
                        "or 0 for a constant offset");
   }
+  if (!(std::isfinite(unloaded_start_s) && unloaded_start_s >= 0.0)) {
+    return Fail(error, "FilterOptions::unloaded_start_s must be finite and >= 0 — seconds at the "
+                       "log's start with the instrument untouched and the arm still, e.g. 0.1, "
+                       "or 0 for none");
+  }
   if (!(std::isfinite(backlash_transit_noise) && backlash_transit_noise >= 0.0)) {
     return Fail(error, "FilterOptions::backlash_transit_noise must be finite and >= 0 — a "
                        "fraction of the clearance's variance, e.g. 1, or 0 for a certain pull");

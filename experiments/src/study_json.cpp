@@ -142,7 +142,7 @@ Study ParseStudy(const std::string& text, const std::string& file) {
     const auto& filter = doc["filter"];
     r.Object(filter, "/filter",
              {{"deflection_model_error", false}, {"load_follows_motor", false},
-              {"inertial_torque_error", false}});
+              {"inertial_torque_error", false}, {"unloaded_start_s", false}});
     if (filter.contains("deflection_model_error")) {
       s.deflection_model_error = r.Number(filter["deflection_model_error"],
                                           "/filter/deflection_model_error", "(share of K·τ)", 0.0, 1.0);
@@ -158,6 +158,10 @@ Study ParseStudy(const std::string& text, const std::string& file) {
     if (filter.contains("inertial_torque_error")) {
       s.inertial_torque_error = r.Number(filter["inertial_torque_error"],
                                          "/filter/inertial_torque_error", "(share of J·θ̈)", 0.0, 10.0);
+    }
+    if (filter.contains("unloaded_start_s")) {
+      s.unloaded_start_s =
+          r.Number(filter["unloaded_start_s"], "/filter/unloaded_start_s", "s", 0.0, 60.0);
     }
   }
   if (doc.contains("scenario_set")) s.scenario_set = ReadSet(r, doc["scenario_set"], "/scenario_set");

@@ -143,6 +143,16 @@ TEST(FilterCommand, TheHeldLoadModelAndTheInertialErrorReachTheFilter) {
   ExpectRejected("--inertial-error -1", "--inertial-error", "filter_command_inertial_bad");
 }
 
+// --unloaded-start tares the effort offset (turning β on): the sample log's
+// arm rests untouched for its first 3 s, and the corrected angles change from
+// there on; a negative span is bad input.
+TEST(FilterCommand, AnUnloadedStartReachesTheFilter) {
+  const auto [differ, rows] =
+      RowsAFlagChanges("--unloaded-start 0.15", "q1_corr", "filter_command_unloaded_start");
+  EXPECT_GT(differ, rows / 2);
+  ExpectRejected("--unloaded-start -1", "unloaded_start_s", "filter_command_unloaded_bad");
+}
+
 TEST(FilterCommand, BadInputExitsTwoAndWritesNothing) {
   const auto dir = FreshDirectory("filter_command_bad");
   const auto out = dir / "out.csv";

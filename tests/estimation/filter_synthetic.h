@@ -38,6 +38,14 @@ struct SyntheticOptions {
   double drift_on_s = -1.0;      ///< from this time, an effort offset (a hidden effect)
   double drift_nm = 0.0;
   bool draw_scale = true;        ///< compliance scale from the prior; else 1
+  /// Each shaft starts uniformly anywhere in its clearance, as a real one
+  /// does; false: in the middle, the filter's prior mean.
+  bool draw_shaft_start = false;
+  /// Else where both shafts start, a share of their clearance in [−1, 1].
+  double shaft_start_share = 0.0;
+  /// The load is 0 before this time (the arm at rest, untouched); the pushes
+  /// and the wander start from it.
+  double unloaded_s = 0.0;
   /// c_s, N·m·s/rad: the effort also carries c_s·g·q̇ (models::ShaftDampingTorque),
   /// g the true load's hold on the wall, q̇ the noise-free encoder's rate.
   double shaft_damping_nm_s_per_rad = 0.0;
@@ -68,6 +76,11 @@ inline SyntheticRun MakeSyntheticRun(const models::ModelParameters& p, const Fil
     run.true_scale << 1.0 + o.compliance_scale_sd * normal(rng),
         1.0 + o.compliance_scale_sd * normal(rng);
   }
+  std::uniform_real_distribution<double> share(-1.0, 1.0);
+  for (int j = 0; j < 2; ++j) {
+    const double start = s.draw_shaft_start ? share(rng) : s.shaft_start_share;
+    backlash[j] = start * p.joints[j].backlash_rad;
+  }
   constexpr double kPi = 3.14159265358979323846;
   for (int k = 0; k < n; ++k) {
     const double t = k * dt;
@@ -76,11 +89,13 @@ inline SyntheticRun MakeSyntheticRun(const models::ModelParameters& p, const Fil
     sample.insertion_depth_m = s.depth_m;
     sample.tip_fixed = s.tip_fixed;
     if (!s.tip_fixed) tip += Eigen::Vector2d(0.05, -0.03) * dt;  // slow free motion
-    Eigen::Vector2d torque;
-    const double phase = 2.0 * kPi * t / s.push_period_s;
-    torque << s.peak_torque_nm * std::sin(phase), -0.6 * s.peak_torque_nm * std::sin(phase + 0.7);
-    wander += s.load_noise_nm * std::sqrt(dt) * Eigen::Vector2d(normal(rng), normal(rng));
-    torque += wander;
+    Eigen::Vector2d torque(0.0, 0.0);
+    if (t >= s.unloaded_s) {
+      const double phase = 2.0 * kPi * (t - s.unloaded_s) / s.push_period_s;
+      torque << s.peak_torque_nm * std::sin(phase), -0.6 * s.peak_torque_nm * std::sin(phase + 0.7);
+      wander += s.load_noise_nm * std::sqrt(dt) * Eigen::Vector2d(normal(rng), normal(rng));
+      torque += wander;
+    }
     for (int j = 0; j < 2; ++j) {
       const auto& jp = p.joints[j];
       backlash[j] = models::BacklashHysteresisStep(backlash[j], torque[j], jp.backlash_rad,

@@ -110,6 +110,18 @@ struct FilterOptions {
   /// covered 91 % (docs/validation.md, Part 4, "The load follows the motor").
   /// false: tau+ = tau, as a free tip's.
   bool load_follows_motor = true;
+  /// true: a held tip's encoder teaches the clearance error e only once the
+  /// hold's load has pressed the shaft against a wall (ClearanceWalls); until
+  /// then e is a consider state. Why: the shaft starts anywhere in its
+  /// clearance (uniformly), and until the load presses it against a wall its
+  /// travel depends on that start as much as on the clearance. A shaft that
+  /// starts on the wall it is pushed against shows no travel whatever its
+  /// clearance; the Gaussian stand-in for the start read that as a narrow
+  /// clearance (divot trial 505: e −0.84 mrad against a true +1.5, joint 2
+  /// off by 2.1 σ for the whole hold; docs/validation.md, Part 4, "The
+  /// effort's offset and the clearance's first wall"). false: e learns from
+  /// every held sample.
+  bool clearance_needs_a_wall = true;
   double held_load_rest_rate_nm = 0.01;   ///< σ_rest, N·m/√s: tissue relaxation, a slow slip
   /// m ≥ 1: the margin on the motor's increment for the error of s·K(L).
   double held_load_motion_margin = 2.0;
@@ -262,6 +274,18 @@ struct FilterOptions {
   /// table identified in free motion misses about this on another day.
   static constexpr double kDefaultEffortOffsetSdNm = 0.02;
   double initial_torque_sd_nm = 1.0;
+  /// Seconds from the log's first sample during which nothing touches the
+  /// instrument and the arm is at rest, e.g. before it approaches the tissue:
+  /// the load is 0 there, so the effort reads tau0 + β and teaches β (the
+  /// tare a force-sensing arm takes before contact), while the tip's other
+  /// states learn nothing from it. Why: elsewhere the effort cannot tell β
+  /// from a load. A free tip read an offset of 3 σ_β as a load that put the
+  /// shaft on a wall, and the tip stayed 2–4 σ off through the push that
+  /// followed (divot study: joint 1's z² 3.5 for |β| > 1.5 σ_β; with a 0.15 s
+  /// tare, 1.1). 0 (the default): no such span. Needs σ_β > 0
+  /// (effort_offset_sd_nm) to teach anything; the arm must be still (the
+  /// filter reads a free tip's effort without J·θ̈).
+  double unloaded_start_s = 0.0;
   double initial_tip_sd_rad = 0.05;
   /// ω in (0, 1] of the seating bound (SeatingBound): when the tip is seated,
   /// every state but the load keeps its covariance × 1/ω and the load's is
@@ -416,6 +440,28 @@ class ComplianceFilter {
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };
+
+/// Whether a held tip's load has pressed a joint's shaft against a wall since
+/// the tip was seated (FilterOptions::clearance_needs_a_wall). The shaft's start
+/// in its clearance is uniform, which the filter's Gaussian cannot hold: until
+/// a wall is reached the travel says as much about the start as about the
+/// clearance. From a wall on, the start is known.
+struct ClearanceWalls {
+  /// A load holds the shaft on its wall from this hold g (BacklashHold) up.
+  static constexpr double kPressedHold = 0.99;
+  bool pressed = false;
+  void Seat() { pressed = false; }
+  /// hold: BacklashHold of the load the filter is sure of.
+  void Observe(double hold) { pressed = pressed || hold >= kPressedHold; }
+  /// The encoder may teach e.
+  bool TeachClearance() const { return pressed; }
+};
+
+/// True while the sample at elapsed_s from the log's first lies in the span
+/// FilterOptions::unloaded_start_s says the instrument was unloaded.
+inline bool InUnloadedStart(const FilterOptions& options, double elapsed_s) {
+  return elapsed_s < options.unloaded_start_s;  // NaN: false
+}
 
 /// The part of a load estimate tau (N·m, variance in N·m²) that the filter is
 /// sure of: tau moved toward 0 by options.load_margin_sd standard deviations,

@@ -88,6 +88,9 @@ struct Study {
   /// filter's defaults (true; NaN: 0.3) unless the study's "filter" sets them.
   bool load_follows_motor = true;
   double inertial_torque_error = std::numeric_limits<double>::quiet_NaN();
+  /// FilterOptions::unloaded_start_s: the seconds at each simulated log's start
+  /// with the tip free, the arm still and no load (0: none).
+  double unloaded_start_s = 0.0;
   int trials = 100;
   std::uint64_t seed = 1;
   /// FNV-1a 64 of the study (without "trials") and of the scenario file's
