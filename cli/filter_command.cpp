@@ -58,7 +58,7 @@ io::InputError OptionError(const std::string& error) {
       {"effort_noise_nm", "--effort-noise"},    {"encoder_noise_rad", "--encoder-noise"},
       {"external_torque_rate_nm", "--torque-rate"}, {"compliance_scale_sd", "--compliance-sd"},
       {"gate_probability", "--gate"},            {"mismatch_window", "--mismatch-window"},
-      {"inertial_torque_error", "--inertial-error"}};
+      {"inertial_torque_error", "--inertial-error"}, {"unloaded_start_s", "--unloaded-start"}};
   std::string problem = error;
   const std::string prefix = "FilterOptions::";
   if (problem.rfind(prefix, 0) == 0) problem.erase(0, prefix.size());

@@ -150,7 +150,8 @@ TEST(FilterCommand, AnUnloadedStartReachesTheFilter) {
   const auto [differ, rows] =
       RowsAFlagChanges("--unloaded-start 0.15", "q1_corr", "filter_command_unloaded_start");
   EXPECT_GT(differ, rows / 2);
-  ExpectRejected("--unloaded-start -1", "unloaded_start_s", "filter_command_unloaded_bad");
+  ExpectRejected("--unloaded-start -1", "--unloaded-start: unloaded_start_s",
+                 "filter_command_unloaded_bad");
 }
 
 TEST(FilterCommand, BadInputExitsTwoAndWritesNothing) {
