@@ -128,7 +128,11 @@ void ComplianceFilter::Impl::Initialise(const FilterSample& sample, double depth
                      : std::isfinite(sample.reference_rad[j]) ? sample.reference_rad[j]
                                                               : 0.0;
     const double tau0 = models::BiasTorqueAt(parameters.joints[j], q, depth_m);
-    const double tau = std::isfinite(sample.effort_nm[j]) ? sample.effort_nm[j] - tau0 : 0.0;
+    // Unloaded (unloaded_start_s): the effort's departure from tau0 is β's,
+    // for the updates to find, and the shaft is where its prior says.
+    const double tau = std::isfinite(sample.effort_nm[j]) && !InUnloadedStart(options, 0.0)
+                           ? sample.effort_nm[j] - tau0
+                           : 0.0;
     // Start where the model puts the tip for this sample (the dead-zone
     // correction), so that the first encoder update adds no information twice.
     // One effort sample: a load within its noise puts the shaft nowhere in particular.
@@ -136,8 +140,6 @@ void ComplianceFilter::Impl::Initialise(const FilterSample& sample, double depth
     const double b = delta[j] * models::SmoothSaturation(sure / width[j]);
     const double tip = q - b - models::ComplianceAt(parameters.joints[j], depth_m) * tau;
     joint[j].mean << tip, tau, b, 1.0, 0.0, 0.0;
-    // Unloaded: the effort's departure from tau0 is β's, for the updates to find.
-    if (InUnloadedStart(options, 0.0)) joint[j].mean << q, 0.0, 0.0, 1.0, 0.0, 0.0;
     joint[j].covariance = PriorCovariance(options, delta[j], uncertainty[j]);
     transition[j] = FilterTransition{};
     transition[j].predicted_mean = joint[j].mean;
@@ -474,6 +476,11 @@ void ComplianceFilter::Impl::StepState(const FilterSample& sample) {
   // measured angle, an input, so its row is the unit vectors of tau and beta).
   const bool unloaded = InUnloadedStart(options, sample.time_s - start_time_s);
   for (int j = 0; j < 2; ++j) {
+    if (unloaded) {  // the load is known: 0, with no doubt, whatever the effort says
+      joint[j].mean[kTorque] = 0.0;
+      joint[j].covariance.row(kTorque).setZero();
+      joint[j].covariance.col(kTorque).setZero();
+    }
     const double effort = sample.effort_nm[j];
     if (!std::isfinite(effort)) {
       tally.flags |= kFlagMissing;
@@ -505,11 +512,6 @@ void ComplianceFilter::Impl::StepState(const FilterSample& sample) {
     const double variance = sample.tip_fixed
                                 ? HeldEffortVariance(options, inertial_torque)
                                 : options.effort_noise_nm * options.effort_noise_nm;
-    if (unloaded) {  // the load is known: 0, with no doubt
-      joint[j].mean[kTorque] = 0.0;
-      joint[j].covariance.row(kTorque).setZero();
-      joint[j].covariance.col(kTorque).setZero();
-    }
     ScalarUpdate(j, kEffortChannel, Vector::Unit(kTorque) + Vector::Unit(kOffset),
                  effort - tau0 - inertial - joint[j].mean[kTorque] - joint[j].mean[kOffset],
                  variance, &tally, false, ConsiderFor(sample, j, unloaded));

@@ -254,14 +254,16 @@ Study ParseStudy(const std::string& text, const std::string& file) {
       }
       const json& value = doc[section][spec.key];
       const std::string pk = ps + "/" + spec.key;
-      if (spec.per_joint && value.is_array()) {  // [joint 1's, joint 2's]: instruments differ per joint
+      // [joint 1's, joint 2's]: an instrument's joints differ (their nominal clearances do).
+      if (spec.per_joint && value.is_array()) {
         if (value.size() != 2) {
           r.Fail(pk, r.Dotted(pk) + " must hold two distributions (joint 1, joint 2), found " +
                          std::to_string(value.size()),
                  "write [joint 1's, joint 2's], or one distribution for both joints");
         }
         for (int j = 0; j < 2; ++j) {
-          s.quantities[spec.first + j] = ReadDistribution(r, value[j], pk + "/" + std::to_string(j), checked);
+          s.quantities[spec.first + j] =
+              ReadDistribution(r, value[j], pk + "/" + std::to_string(j), checked);
         }
         continue;
       }

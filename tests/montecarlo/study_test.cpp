@@ -97,7 +97,8 @@ TEST(Study, DivotStudyDrawsWhatItDeclares) {
 // σ 1.15 mrad, as the filter's prior says.
 TEST(Study, EachJointMayDrawFromItsOwnDistribution) {
   const Study study = ParseStudy(
-      StudyText(R"(, "instrument": {"backlash_rad": [{"uniform": [0.0065, 0.0105]}, 0.007]})"), "a.json");
+      StudyText(R"(, "instrument": {"backlash_rad": [{"uniform": [0.0065, 0.0105]}, 0.007]})"),
+      "a.json");
   EXPECT_EQ(study.quantities[kBacklash1Rad].kind, Distribution::Kind::kUniform);
   EXPECT_EQ(study.quantities[kBacklash1Rad].a, 0.0065);
   EXPECT_EQ(study.quantities[kBacklash1Rad].b, 0.0105);
