@@ -28,6 +28,7 @@ int Run(int argc, char** argv) {
   add(pliant::cli::AddFilterCommand);
   add(pliant::cli::AddDiagnoseCommand);
   add(pliant::cli::AddMontecarloCommand);
+  add(pliant::cli::AddImportCommand);
 
   // CLI11 answers a mistyped command with "A subcommand is required"; name it.
   if (argc > 1 && argv[1][0] != '-' && !commands.empty()) {
