@@ -134,7 +134,8 @@ std::vector<std::string> ReadCsvHeader(const std::string& path, std::size_t* lin
   start.resize(static_cast<std::size_t>(in.gcount()));
   std::vector<std::string> names;
   ForEachLine(start, [&](std::size_t number, std::string_view line) {
-    if (Trim(line).empty()) return true;
+    // Blank lines and a canonical log's "# key: value" metadata come before a header.
+    if (Trim(line).empty() || line.front() == '#') return true;
     *line_number = number;
     names = NamesOf(line);
     return false;
