@@ -137,6 +137,30 @@ TEST(ImportJhu2017, MissingColumnNamesItAndTheColumnsFound) {
             "--format (pliant import --help lists them)");
 }
 
+// data/real's logs are what the importer writes today, and the log reader takes
+// them as one joint, quasi-static.
+TEST(ImportJhu2017, ShippedLogsAreTheImportersOutput) {
+  TempDirectory dir;
+  const std::vector<std::pair<std::string, std::string>> shipped = {
+      {kClamped1, "jhu2017_clamped_j1.csv"},
+      {kClamped2, "jhu2017_clamped_j2.csv"},
+      {kBias1, "jhu2017_bias_j1.csv"},
+      {kBias2, "jhu2017_bias_j2.csv"}};
+  for (const auto& [source, name] : shipped) {
+    const bool clamped = name.find("clamped") != std::string::npos;
+    WriteLog(dir.File(name),
+             clamped ? ImportJhu2017ClampedBeam(source, {}) : ImportJhu2017BiasSweep(source, {}));
+    const std::string path = PLIANT_SOURCE_DIR "/data/real/" + name;
+    EXPECT_EQ(ReadText(path), ReadText(dir.File(name)))
+        << name << ": regenerate (data/real/README.md)";
+    const Log log = ReadLog(path);
+    const int joint = name[name.size() - 5] - '0';  // "..._jN.csv"
+    EXPECT_TRUE(log.header.QuasiStatic()) << name;
+    EXPECT_TRUE(log.header.JointRecorded(joint)) << name;
+    EXPECT_FALSE(log.header.JointRecorded(3 - joint)) << name;
+  }
+}
+
 // Each broken cell or row, named at its line (and column) with its fix.
 TEST(ImportJhu2017, BadRowsAreNamedAtTheirLineAndColumn) {
   const std::string good = kClampedHeader + "0,0,0.1,0.01,0.2,0.1\n";
