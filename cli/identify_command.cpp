@@ -12,6 +12,8 @@
 #include "pliant/experiments/plot.h"
 #include "pliant/io/input_error.h"
 #include "pliant/io/log_reader.h"
+#include "pliant/io/log_plausibility.h"
+#include "pliant/io/output_path.h"
 #include "pliant/io/parameters_json.h"
 
 namespace pliant::cli {
@@ -65,12 +67,17 @@ void DrawFigure(const estimation::IdentificationResult& r, const std::string& pa
 }
 
 void RunIdentify(const IdentifyOptions& options) {
+  io::CheckOutputFile(options.output_path, "-o");
+  io::CheckOutputFile(options.figure_path, "--figure");
+  const models::ModelParameters prior =
+      options.prior_path.empty() ? estimation::PaperPrior() : io::ReadParameters(options.prior_path);
+  for (const auto& path : options.logs) {
+    io::CheckLogPlausibilityAndWarn(path, {options.skip_bad_rows});
+  }
   estimation::IdentificationData data;
   for (const auto& path : options.logs) {
     estimation::AppendSamples(io::ReadLog(path, {options.skip_bad_rows}), path, {}, &data);
   }
-  const models::ModelParameters prior =
-      options.prior_path.empty() ? estimation::PaperPrior() : io::ReadParameters(options.prior_path);
   estimation::IdentificationResult result;
   if (options.method == "paper") {
     estimation::PaperProcedureOptions paper;

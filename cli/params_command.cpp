@@ -70,10 +70,10 @@ void Compare(const ParamsOptions& options, const models::ModelParameters& first)
   const auto second = Read(options.compare, false);
   const auto a = estimation::QueryParametersAtDepth(first, options.depth_m);
   const auto b = estimation::QueryParametersAtDepth(second, options.depth_m);
-  std::printf("at L = %.4f m (K in rad/(N·m), δ in rad; difference = first − second)\n",
-              options.depth_m);
-  std::printf("  %-4s %24s %24s %12s\n", "", options.path.c_str(), options.compare.c_str(),
-              "difference");
+  std::printf("at L = %.4f m (K in rad/(N·m), δ in rad)\n  first:  %s\n  second: %s\n",
+              options.depth_m, options.path.c_str(), options.compare.c_str());
+  std::printf("  %-4s %24s %24s %12s  %s\n", "", "first", "second", "first−second",
+              "in σ of the difference");
   for (int j = 0; j < 2; ++j) {
     const auto &x = a.joints[j], &y = b.joints[j];
     CompareRow(j == 0 ? "K1" : "K2", x.compliance_rad_per_nm, x.compliance_sd,

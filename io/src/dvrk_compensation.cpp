@@ -86,6 +86,13 @@ class Reader {
            "with _second");
     }
     const std::string name = entry.at("parameter").get<std::string>();
+    bool known = false;
+    for (const auto& joint : kEntryNames)
+      for (const char* entry_name : joint) known = known || name == entry_name;
+    if (!known) {
+      Fail(pointer + "/parameter", "unknown parameter '" + name + "'",
+           "use compliance_first, torque_offset_first, backlash_first, or the same with _second");
+    }
     const bool compliance = name.rfind("compliance", 0) == 0;
     if (entry.contains("value") && entry.contains("value-a")) {
       Fail(pointer + "/value", name + " has both \"value\" and \"value-a\"",
@@ -143,11 +150,6 @@ DvrkCompensation ParseDvrkCompensation(const std::string& text, const std::strin
     for (int j = 0; j < 2; ++j)
       for (int k = 0; k < 3; ++k)
         if (name == kEntryNames[j][k]) joint = j, kind = k;
-    if (joint < 0) {
-      reader.Fail(pointer + "/parameter", "unknown parameter '" + name + "'",
-                  "use compliance_first, torque_offset_first, backlash_first, or the same with "
-                  "_second");
-    }
     if (!seen.insert(name).second) {
       reader.Fail(pointer, "parameter '" + name + "' is given twice",
                   "keep only one (the dVRK uses the last)");

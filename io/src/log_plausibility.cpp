@@ -207,12 +207,26 @@ class Checker {
 
 }  // namespace
 
-std::vector<std::string> CheckLogPlausibility(const std::string& path,
-                                              const LogReaderOptions& options) {
+LogPlausibility CheckLogPlausibility(const std::string& path, const LogReaderOptions& options) {
   LogReader reader(path, options);
   Checker checker(reader);
-  while (const double* row = reader.Next()) checker.Add(row);
-  return checker.Finish();
+  LogPlausibility out;
+  const int t = reader.header().Index("t");
+  bool first = true;
+  while (const double* row = reader.Next()) {
+    if (first) out.first_t_s = row[t], first = false;
+    out.last_t_s = row[t];
+    checker.Add(row);
+  }
+  out.warnings = checker.Finish();
+  return out;
+}
+
+LogPlausibility CheckLogPlausibilityAndWarn(const std::string& path,
+                                            const LogReaderOptions& options) {
+  LogPlausibility out = CheckLogPlausibility(path, options);
+  for (const auto& warning : out.warnings) std::fprintf(stderr, "warning: %s\n", warning.c_str());
+  return out;
 }
 
 }  // namespace pliant::io

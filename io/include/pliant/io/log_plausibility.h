@@ -37,10 +37,22 @@ inline constexpr double kLargestPlausibleComplianceRadPerNm = 0.6;
 inline constexpr double kSlowestPlausibleRowPeriodS = 0.5;
 inline constexpr double kLongestPlausibleGapS = 60.0;
 
+/// What the checks found that may be right but usually is not, and the
+/// log's time span (for options that must lie within it).
+struct LogPlausibility {
+  std::vector<std::string> warnings;  ///< without the "warning: " prefix
+  double first_t_s = 0.0;
+  double last_t_s = 0.0;
+  double DurationS() const { return last_t_s - first_t_s; }
+};
+
 /// Streams the log at `path` once. Throws InputError (exit 2) when its
-/// physics says degrees or milliseconds; returns warnings (without the
-/// "warning: " prefix) for what may be right but usually is not.
-std::vector<std::string> CheckLogPlausibility(const std::string& path,
-                                              const LogReaderOptions& options = {});
+/// physics says degrees or milliseconds.
+LogPlausibility CheckLogPlausibility(const std::string& path,
+                                     const LogReaderOptions& options = {});
+
+/// CheckLogPlausibility with its warnings printed on stderr as "warning: …".
+LogPlausibility CheckLogPlausibilityAndWarn(const std::string& path,
+                                            const LogReaderOptions& options = {});
 
 }  // namespace pliant::io
