@@ -11,12 +11,13 @@ namespace pliant::io {
 namespace {
 
 const char kDegreesFix[] =
-    "this looks like degrees — convert q1, q2 (and their _cmd, _ref and _true columns, and v1, v2) "
-    "to radians: multiply by π/180";
+    "this looks like degrees; convert q1, q2 (and their _cmd, _ref and _true columns, and v1, v2) "
+    "to radians (multiply by π/180)";
 
-std::string Format(const char* format, double a, double b = 0.0, double c = 0.0) {
+template <typename... Args>
+std::string Format(const char* format, Args... args) {
   char text[256];
-  std::snprintf(text, sizeof text, format, a, b, c);
+  std::snprintf(text, sizeof text, format, args...);
   return text;
 }
 
@@ -153,17 +154,16 @@ class Checker {
       if (ratio > 20.0 && ratio < 200.0) {
         Fail(0, 0,
              Format("q%d changes %.3g times as fast as v%d says (Δq/Δt against v%d over the log)",
-                    j + 1, ratio, j + 1) +
+                    j + 1, ratio, j + 1, j + 1) +
                  Format(" while both should be in rad and rad/s; π/180 = 1/%.1f", 180.0 / M_PI),
              kDegreesFix);
       }
       if (ratio > 1e-4 && ratio < 1e-2) {
         Fail(0, 0,
              Format("q%d changes only %.3g times as fast as v%d says (Δq/Δt against v%d over the "
-                    "log)",
-                    j + 1, ratio, j + 1) +
-                 " — t looks like milliseconds",
-             "give t in seconds: divide it by 1000");
+                    "log): t looks like milliseconds",
+                    j + 1, ratio, j + 1, j + 1),
+             "give t in seconds (divide it by 1000)");
       }
     }
   }
