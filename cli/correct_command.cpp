@@ -6,6 +6,8 @@
 
 #include "commands.h"
 #include "pliant/estimation/log_correction.h"
+#include "pliant/io/log_plausibility.h"
+#include "pliant/io/output_path.h"
 #include "pliant/io/parameters_json.h"
 
 namespace pliant::cli {
@@ -39,7 +41,9 @@ void PrintSummary(const CorrectOptions& options, const estimation::LogCorrection
 }
 
 void RunCorrect(const CorrectOptions& options) {
+  io::CheckOutputFile(options.output_path, "-o");
   const auto parameters = io::ReadParameters(options.params_path);
+  io::CheckLogPlausibilityAndWarn(options.input_path, {options.skip_bad_rows});
   const estimation::ComplianceCorrector corrector(
       parameters, *estimation::ParseCorrectionModel(options.model_name));
   const auto summary = estimation::CorrectLog(

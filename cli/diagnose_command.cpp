@@ -14,6 +14,8 @@
 #include "pliant/experiments/diagnosis_report.h"
 #include "pliant/io/input_error.h"
 #include "pliant/io/log_reader.h"
+#include "pliant/io/log_plausibility.h"
+#include "pliant/io/output_path.h"
 #include "pliant/io/parameters_json.h"
 
 namespace pliant::cli {
@@ -78,7 +80,9 @@ void RunDiagnose(DiagnoseCommandOptions o) {
     throw io::InputError(o.report_dir, 0, 0, "is a file, and the report is a directory",
                          "give -o a directory name (it is created if missing)");
   }
+  io::CheckOutputDirectory(o.report_dir, "-o");
   const auto parameters = io::ReadParameters(o.params_path);
+  io::CheckLogPlausibilityAndWarn(o.log_path);
   const io::Log log = io::ReadLog(o.log_path);
   const auto diagnosis = estimation::Diagnose(log, o.log_path, parameters, o.diagnose);
   const auto files =
@@ -117,7 +121,7 @@ Command AddDiagnoseCommand(CLI::App& app) {
   sub->add_option("--max-lag", o->diagnose.max_lag_samples,
                   "Residual-channel correlation over ± this many samples")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0, 100000));
   sub->add_option("--folds", o->diagnose.folds, "Cross-validation folds, by segment")
       ->capture_default_str()
       ->check(CLI::Range(2, 100));

@@ -9,6 +9,8 @@
 #include "commands.h"
 #include "pliant/estimation/filter_log.h"
 #include "pliant/io/input_error.h"
+#include "pliant/io/log_plausibility.h"
+#include "pliant/io/output_path.h"
 #include "pliant/io/parameters_json.h"
 
 namespace pliant::cli {
@@ -75,15 +77,32 @@ io::InputError OptionError(const std::string& error) {
   return io::InputError(option, 0, 0, problem, fix);
 }
 
+// The unloaded start must leave loaded rows to correct: a window as long as
+// the log would take every push for rest.
+void CheckUnloadedStart(double unloaded_start_s, double duration_s) {
+  if (unloaded_start_s > 0.0 && unloaded_start_s >= duration_s) {
+    char problem[160];
+    std::snprintf(problem, sizeof problem,
+                  "unloaded_start_s = %g s is not shorter than the log, which lasts %g s",
+                  unloaded_start_s, duration_s);
+    throw io::InputError("--unloaded-start", 0, 0, problem,
+                         "give the seconds at the log's start with the instrument untouched and "
+                         "the arm still, e.g. 0.1, or 0 for none");
+  }
+}
+
 void RunFilter(FilterCommandOptions o) {
   // A tare needs an offset to learn: unless told its σ, β is on, its σ the
   // parameters' (filter.h: NaN), as --effort-offset-sd nan would ask.
   if (o.filter.unloaded_start_s > 0.0 && !o.effort_offset_given) {
     o.filter.effort_offset_sd_nm.setConstant(estimation::FilterOptions::kFromParameters);
   }
+  io::CheckOutputFile(o.output_path, "-o");
   const auto parameters = io::ReadParameters(o.params_path);
   std::string error;
   if (!o.filter.IsValid(&error)) throw OptionError(error);
+  const auto log = io::CheckLogPlausibilityAndWarn(o.input_path, {o.skip_bad_rows});
+  CheckUnloadedStart(o.filter.unloaded_start_s, log.DurationS());
   const auto summary =
       estimation::FilterLog(o.input_path, o.output_path, parameters, o.filter, o.smooth,
                             "pliant filter, parameters " + o.params_path, {o.skip_bad_rows});

@@ -12,6 +12,7 @@
 #include "pliant/experiments/scenario.h"
 #include "pliant/experiments/simulator.h"
 #include "pliant/io/log_writer.h"
+#include "pliant/io/output_path.h"
 
 namespace pliant::cli {
 namespace {
@@ -25,6 +26,8 @@ struct SimulateOptions {
 };
 
 void RunSimulate(const SimulateOptions& options) {
+  io::CheckOutputFile(options.output_path, "-o");
+  io::CheckOutputFile(options.figure_path, "--figure");
   const auto scenario = experiments::ReadScenario(options.scenario_path, options.overrides);
   const auto start = std::chrono::steady_clock::now();
   const auto result = experiments::Simulate(scenario, options.seed);
@@ -57,8 +60,17 @@ Command AddSimulateCommand(CLI::App& app) {
       ->required();
   sub->add_option("-o,--output", options->output_path, "Output log (CSV), written atomically")
       ->required();
+  // CLI11 reads "-1" into an unsigned seed as 18446744073709551615: only digits pass.
+  const CLI::Validator whole_number(
+      [](std::string& text) {
+        const bool digits = !text.empty() && text.size() <= 20 &&
+                            text.find_first_not_of("0123456789") == std::string::npos;
+        return digits ? std::string() : "the seed is a whole number from 0 to 2^64 - 1";
+      },
+      "SEED");
   sub->add_option("--seed", options->seed, "Seed of the noise: the same seed, the same log")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(whole_number);
   sub->add_option("--set", options->overrides,
                   "Override a scenario value before it is checked: key=value with a dotted key "
                   "and a JSON value, e.g. --set experiment.depths_m=[0.1,0.2] (repeatable)")

@@ -54,6 +54,8 @@ LogReader::LogReader(std::string path, LogReaderOptions options)
          "check the path and that the file is readable");
   }
   ReadHeader();
+  tip_fixed_column_ = header_.Index("tip_fixed");
+  segment_column_ = header_.Index("segment");
   PeekFirstRow();
 }
 
@@ -198,7 +200,30 @@ bool LogReader::ParseRow(std::string_view line) {
   }
   CheckUnrecordedJointsEmpty();
   CheckRanges();
+  CheckTipFixedAndSegment();
   return true;
+}
+
+// tip_fixed is a flag and segment a count: 2, 0.5 or 2.5 are typing or
+// alignment mistakes that would otherwise be read as "not held" or cut a
+// segment in two. An empty field (NaN) means unknown and is allowed.
+void LogReader::CheckTipFixedAndSegment() const {
+  if (tip_fixed_column_ >= 0) {
+    const double flag = row_[static_cast<std::size_t>(tip_fixed_column_)];
+    if (!std::isnan(flag) && flag != 0.0 && flag != 1.0) {
+      Fail(static_cast<std::size_t>(tip_fixed_column_) + 1,
+           "tip_fixed = " + detail::NumberText(flag) + " is neither 0 nor 1",
+           "write 1 on rows where the tip is held still (clamped or in a divot) and 0 elsewhere");
+    }
+  }
+  if (segment_column_ >= 0) {
+    const double segment = row_[static_cast<std::size_t>(segment_column_)];
+    if (!std::isnan(segment) && segment != std::floor(segment)) {
+      Fail(static_cast<std::size_t>(segment_column_) + 1,
+           "segment = " + detail::NumberText(segment) + " is not a whole number",
+           "number the segments 0, 1, 2, … and give every row its segment's number");
+    }
+  }
 }
 
 // A joint that the first row left empty stays empty: a value appearing later means

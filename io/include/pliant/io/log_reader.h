@@ -60,6 +60,7 @@ class LogReader {
   bool TakeLine(std::string_view& line);
   void CheckUnrecordedJointsEmpty() const;
   void CheckRanges();
+  void CheckTipFixedAndSegment() const;
 
   std::string path_;
   LogReaderOptions options_;
@@ -78,6 +79,8 @@ class LogReader {
   double last_t_ = 0.0;
   bool have_last_t_ = false;
   bool finished_ = false;
+  int tip_fixed_column_ = -1;  // -1 when the log has none
+  int segment_column_ = -1;
 };
 
 /// Reads a whole log. Throws InputError.
