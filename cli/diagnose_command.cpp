@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,6 +16,7 @@
 #include "pliant/io/input_error.h"
 #include "pliant/io/log_reader.h"
 #include "pliant/io/parameters_json.h"
+#include "pliant/io/progress.h"
 
 namespace pliant::cli {
 namespace {
@@ -79,10 +81,12 @@ void RunDiagnose(DiagnoseCommandOptions o) {
                          "give -o a directory name (it is created if missing)");
   }
   const auto parameters = io::ReadParameters(o.params_path);
+  std::optional<io::Progress> progress(std::in_place, "pliant diagnose");
   const io::Log log = io::ReadLog(o.log_path);
   const auto diagnosis = estimation::Diagnose(log, o.log_path, parameters, o.diagnose);
   const auto files =
       experiments::WriteDiagnosisReport(o.report_dir, log, diagnosis, {o.log_path, o.params_path});
+  progress.reset();  // the line is erased before the summary
   if (!o.json) return PrintHuman(diagnosis, files.html);
   auto summary = experiments::DiagnosisSummaryJson(diagnosis);
   summary["report"] = files.html;
