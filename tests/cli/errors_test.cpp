@@ -403,15 +403,18 @@ TEST(RuntimeError, AMissingOutputDirectoryExitsOne) {
   EXPECT_FALSE(fs::exists(dir / "no"));
 }
 
-TEST(RuntimeError, AnOutputThatIsADirectoryExitsOneAndLeavesNoTemporary) {
+TEST(BadInput, AnOutputThatIsADirectoryExitsTwoAndLeavesNoTemporary) {
   const auto dir = FreshDirectory("errors_runtime_replace");
   WriteText(dir / "in.csv", kGoodLog);
   fs::create_directories(dir / "out.csv");
   const auto r = RunCommand(kCli + " correct --params " + kParams + " " + Quoted(dir / "in.csv") +
                                 " -o " + Quoted(dir / "out.csv"),
                             dir);
-  EXPECT_EQ(r.exit_code, 1) << r.err;
-  EXPECT_EQ(r.err, "pliant: cannot replace " + (dir / "out.csv").string() + ": Is a directory\n");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_EQ(r.err, (dir / "out.csv").string() +
+                       ": the output is a directory — give a file name (a new one, or a regular "
+                       "file to replace), a FIFO, a character device such as /dev/null, or - for "
+                       "standard output\n");
   EXPECT_TRUE(fs::is_directory(dir / "out.csv"));
   EXPECT_TRUE(fs::is_empty(dir / "out.csv"));
   for (const auto& entry : fs::directory_iterator(dir)) {
