@@ -13,6 +13,7 @@
 #include "pliant/estimation/diagnosis.h"
 #include "pliant/estimation/effect_catalogue.h"
 #include "pliant/experiments/diagnosis_report.h"
+#include "pliant/io/atomic_file.h"
 #include "pliant/io/input_error.h"
 #include "pliant/io/log_reader.h"
 #include "pliant/io/parameters_json.h"
@@ -74,7 +75,9 @@ void RunDiagnose(DiagnoseCommandOptions o) {
   CheckEffectNames(o.diagnose.added_effects, "--add");
   CheckEffectNames(o.diagnose.candidates, "--candidate");
   if (o.report_dir.empty()) {
-    o.report_dir = std::filesystem::path(o.log_path).stem().string() + "_diagnosis";
+    const bool piped = o.log_path == io::kStandardStream;
+    o.report_dir =
+        (piped ? "stdin" : std::filesystem::path(o.log_path).stem().string()) + "_diagnosis";
   }
   if (std::filesystem::exists(o.report_dir) && !std::filesystem::is_directory(o.report_dir)) {
     throw io::InputError(o.report_dir, 0, 0, "is a file, and the report is a directory",
