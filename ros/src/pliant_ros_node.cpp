@@ -17,11 +17,13 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <exception>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "pliant/io/input_error.h"
 #include "pliant/io/parameters_json.h"
 #include "pliant/ros/joint_state_filter.h"
 
@@ -43,7 +45,24 @@ class PliantNode {
           Report();
         })) {}
 
-  ~PliantNode() { Report(); }
+  // Median and maximum latency since the last report. After ros::spin()
+  // returns, rosconsole is shut down: the last report goes to stdout itself.
+  void Report(bool after_shutdown = false) {
+    if (latencies_s_.empty()) return;
+    std::sort(latencies_s_.begin(), latencies_s_.end());
+    char text[200];
+    std::snprintf(text, sizeof text,
+                  "pliant_ros: %zu messages filtered; latency over the last %zu: median %.1f us, "
+                  "max %.1f us",
+                  filter_.messages(), latencies_s_.size(),
+                  1e6 * latencies_s_[latencies_s_.size() / 2], 1e6 * latencies_s_.back());
+    if (after_shutdown) {
+      std::printf("%s\n", text);
+    } else {
+      ROS_INFO("%s", text);
+    }
+    latencies_s_.clear();
+  }
 
  private:
   void OnMeasured(const sensor_msgs::JointState::ConstPtr& message) {
@@ -73,17 +92,6 @@ class PliantNode {
     latencies_s_.push_back(latency.data);
   }
 
-  // Median and maximum latency since the last report.
-  void Report() {
-    if (latencies_s_.empty()) return;
-    std::sort(latencies_s_.begin(), latencies_s_.end());
-    ROS_INFO("pliant_ros: %zu messages filtered; latency over the last %zu: median %.1f us, "
-             "max %.1f us",
-             filter_.messages(), latencies_s_.size(), 1e6 * latencies_s_[latencies_s_.size() / 2],
-             1e6 * latencies_s_.back());
-    latencies_s_.clear();
-  }
-
   pliant::ros::JointStateFilter filter_;
   ros::Publisher corrected_, sd_, latency_;
   ros::Subscriber measured_;
@@ -111,9 +119,14 @@ int main(int argc, char** argv) {
     ROS_INFO("pliant_ros: filtering /%s/measured_js with %s -> /%s/pliant/measured_js",
              arm.c_str(), params_file.c_str(), arm.c_str());
     ros::spin();
-  } catch (const std::exception& e) {
+    pliant_node.Report(true);  // the messages since the last timed report
+    std::fflush(stdout);
+  } catch (const pliant::io::InputError& e) {
     ROS_FATAL("%s", e.what());
     return 2;
+  } catch (const std::exception& e) {
+    ROS_FATAL("pliant_ros: %s", e.what());
+    return 1;
   }
   return 0;
 }
