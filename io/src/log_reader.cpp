@@ -1,6 +1,7 @@
 #include "pliant/io/log_reader.h"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -11,6 +12,8 @@
 #include <limits>
 
 #include "log_text.h"
+#include "pliant/io/atomic_file.h"
+#include "pliant/io/progress.h"
 #include "number_text.h"
 
 namespace pliant::io {
@@ -40,6 +43,8 @@ struct LogReader::Buffer {
   std::vector<char> data;
   std::size_t begin = 0, end = 0;
   bool eof = false;
+  std::size_t bytes_read = 0;
+  std::unique_ptr<Progress> progress;  ///< only while reading, and only on a terminal
   ~Buffer() {
     if (fd >= 0) ::close(fd);
   }
@@ -48,13 +53,29 @@ struct LogReader::Buffer {
 LogReader::LogReader(std::string path, LogReaderOptions options)
     : path_(std::move(path)), options_(options), buffer_(std::make_unique<Buffer>()) {
   buffer_->data.resize(std::max<std::size_t>(options_.chunk_bytes, 2));
-  buffer_->fd = ::open(path_.c_str(), O_RDONLY | O_CLOEXEC);
+  // "-" is standard input, named <stdin> in messages.
+  const bool standard_input = path_ == kStandardStream;
+  if (standard_input) path_ = "<stdin>";
+  buffer_->fd = standard_input ? ::fcntl(STDIN_FILENO, F_DUPFD_CLOEXEC, 0)
+                               : ::open(path_.c_str(), O_RDONLY | O_CLOEXEC);
   if (buffer_->fd < 0) {
     Fail(0, std::string("cannot open the log (") + std::strerror(errno) + ")",
          "check the path and that the file is readable");
   }
+  ShowProgress();
   ReadHeader();
+  tip_fixed_column_ = header_.Index("tip_fixed");
+  segment_column_ = header_.Index("segment");
   PeekFirstRow();
+}
+
+// Megabytes read, of the file's size when it has one (a pipe has not).
+void LogReader::ShowProgress() {
+  if (!Progress::Enabled()) return;
+  struct stat status {};
+  const bool sized = ::fstat(buffer_->fd, &status) == 0 && S_ISREG(status.st_mode);
+  buffer_->progress = std::make_unique<Progress>(
+      "reading " + path_, "MB", sized ? static_cast<double>(status.st_size) / 1e6 : 0.0);
 }
 
 LogReader::~LogReader() = default;
@@ -91,6 +112,9 @@ bool LogReader::ReadLine(std::string_view& line) {
     }
     if (got == 0) b.eof = true;
     b.end += static_cast<std::size_t>(got);
+    b.bytes_read += static_cast<std::size_t>(got);
+    if (b.progress) b.progress->Set(static_cast<double>(b.bytes_read) / 1e6);
+    if (b.eof) b.progress.reset();  // erases the line
   }
 }
 
@@ -198,7 +222,30 @@ bool LogReader::ParseRow(std::string_view line) {
   }
   CheckUnrecordedJointsEmpty();
   CheckRanges();
+  CheckTipFixedAndSegment();
   return true;
+}
+
+// tip_fixed is a flag and segment a count: 2, 0.5 or 2.5 are typing or
+// alignment mistakes that would otherwise be read as "not held" or cut a
+// segment in two. An empty field (NaN) means unknown and is allowed.
+void LogReader::CheckTipFixedAndSegment() const {
+  if (tip_fixed_column_ >= 0) {
+    const double flag = row_[static_cast<std::size_t>(tip_fixed_column_)];
+    if (!std::isnan(flag) && flag != 0.0 && flag != 1.0) {
+      Fail(static_cast<std::size_t>(tip_fixed_column_) + 1,
+           "tip_fixed = " + detail::NumberText(flag) + " is neither 0 nor 1",
+           "write 1 on rows where the tip is held still (clamped or in a divot) and 0 elsewhere");
+    }
+  }
+  if (segment_column_ >= 0) {
+    const double segment = row_[static_cast<std::size_t>(segment_column_)];
+    if (!std::isnan(segment) && segment != std::floor(segment)) {
+      Fail(static_cast<std::size_t>(segment_column_) + 1,
+           "segment = " + detail::NumberText(segment) + " is not a whole number",
+           "number the segments 0, 1, 2, … and give every row its segment's number");
+    }
+  }
 }
 
 // A joint that the first row left empty stays empty: a value appearing later means

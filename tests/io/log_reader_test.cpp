@@ -357,3 +357,24 @@ TEST(TipReference, PrefersTruthThenReferenceThenNone) {
 
 }  // namespace
 }  // namespace pliant::io
+
+namespace pliant::io {
+namespace {
+
+TEST_F(LogReaderTest, TipFixedIsAFlagAndSegmentACount) {
+  const std::string header = "t,q1,q2,q3,tau1,tau2,tip_fixed,segment\n";
+  EXPECT_EQ(ErrorOf(header + "0,0,0,0.1,0,0,1,0\n0.1,0,0,0.1,0,0,2,0\n"),
+            "FILE:3:7: tip_fixed = 2 is neither 0 nor 1 \u2014 write 1 on rows where the tip is "
+            "held still (clamped or in a divot) and 0 elsewhere");
+  EXPECT_EQ(ErrorOf(header + "0,0,0,0.1,0,0,0.5,0\n"),
+            "FILE:2:7: tip_fixed = 0.5 is neither 0 nor 1 \u2014 write 1 on rows where the tip is "
+            "held still (clamped or in a divot) and 0 elsewhere");
+  EXPECT_EQ(ErrorOf(header + "0,0,0,0.1,0,0,1,2.5\n"),
+            "FILE:2:8: segment = 2.5 is not a whole number \u2014 number the segments 0, 1, 2, "
+            "… and give every row its segment's number");
+  // Empty (unknown) and whole values read.
+  EXPECT_EQ(ErrorOf(header + "0,0,0,0.1,0,0,,\n0.1,0,0,0.1,0,0,0,3\n"), "no error");
+}
+
+}  // namespace
+}  // namespace pliant::io

@@ -27,7 +27,8 @@ struct LogReaderOptions {
 
 class LogReader {
  public:
-  /// Opens the file and reads metadata and header. Throws InputError.
+  /// Opens the file ("-": standard input, named "<stdin>" in messages and by
+  /// path()) and reads metadata and header. Throws InputError.
   explicit LogReader(std::string path, LogReaderOptions options = {});
   ~LogReader();
   LogReader(const LogReader&) = delete;
@@ -55,11 +56,13 @@ class LogReader {
   [[noreturn]] void Fail(std::size_t column, std::string problem, std::string fix) const;
   [[noreturn]] void FailFieldCount(std::size_t fields) const;
   void ReadHeader();
+  void ShowProgress();
   void AddAbsentJoints();
   void PeekFirstRow();
   bool TakeLine(std::string_view& line);
   void CheckUnrecordedJointsEmpty() const;
   void CheckRanges();
+  void CheckTipFixedAndSegment() const;
 
   std::string path_;
   LogReaderOptions options_;
@@ -78,6 +81,8 @@ class LogReader {
   double last_t_ = 0.0;
   bool have_last_t_ = false;
   bool finished_ = false;
+  int tip_fixed_column_ = -1;  // -1 when the log has none
+  int segment_column_ = -1;
 };
 
 /// Reads a whole log. Throws InputError.
