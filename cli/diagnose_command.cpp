@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -12,11 +13,13 @@
 #include "pliant/estimation/diagnosis.h"
 #include "pliant/estimation/effect_catalogue.h"
 #include "pliant/experiments/diagnosis_report.h"
+#include "pliant/io/atomic_file.h"
 #include "pliant/io/input_error.h"
 #include "pliant/io/log_reader.h"
 #include "pliant/io/log_plausibility.h"
 #include "pliant/io/output_path.h"
 #include "pliant/io/parameters_json.h"
+#include "pliant/io/progress.h"
 
 namespace pliant::cli {
 namespace {
@@ -74,7 +77,9 @@ void RunDiagnose(DiagnoseCommandOptions o) {
   CheckEffectNames(o.diagnose.added_effects, "--add");
   CheckEffectNames(o.diagnose.candidates, "--candidate");
   if (o.report_dir.empty()) {
-    o.report_dir = std::filesystem::path(o.log_path).stem().string() + "_diagnosis";
+    const bool piped = o.log_path == io::kStandardStream;
+    o.report_dir =
+        (piped ? "stdin" : std::filesystem::path(o.log_path).stem().string()) + "_diagnosis";
   }
   if (std::filesystem::exists(o.report_dir) && !std::filesystem::is_directory(o.report_dir)) {
     throw io::InputError(o.report_dir, 0, 0, "is a file, and the report is a directory",
@@ -83,10 +88,12 @@ void RunDiagnose(DiagnoseCommandOptions o) {
   io::CheckOutputDirectory(o.report_dir, "-o");
   const auto parameters = io::ReadParameters(o.params_path);
   io::CheckLogPlausibilityAndWarn(o.log_path);
+  std::optional<io::Progress> progress(std::in_place, "pliant diagnose");
   const io::Log log = io::ReadLog(o.log_path);
   const auto diagnosis = estimation::Diagnose(log, o.log_path, parameters, o.diagnose);
   const auto files =
       experiments::WriteDiagnosisReport(o.report_dir, log, diagnosis, {o.log_path, o.params_path});
+  progress.reset();  // the line is erased before the summary
   if (!o.json) return PrintHuman(diagnosis, files.html);
   auto summary = experiments::DiagnosisSummaryJson(diagnosis);
   summary["report"] = files.html;

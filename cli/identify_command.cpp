@@ -16,6 +16,8 @@
 #include "pliant/io/log_plausibility.h"
 #include "pliant/io/output_path.h"
 #include "pliant/io/parameters_json.h"
+#include "pliant/io/progress.h"
+#include "summary_stream.h"
 
 namespace pliant::cli {
 namespace {
@@ -90,6 +92,22 @@ estimation::IdentificationResult RunSmootherOn(const estimation::IdentificationD
   }
 }
 
+// The fit, with its progress (elapsed time: Ceres gives no share done).
+estimation::IdentificationResult Fit(const IdentifyOptions& options,
+                                     const estimation::IdentificationData& data,
+                                     const models::ModelParameters& prior) {
+  io::Progress progress("pliant identify: " + options.method + " fit");
+  if (options.method == "paper") {
+    estimation::PaperProcedureOptions paper;
+    paper.law = LawOf(options.law);
+    return estimation::RunPaperProcedure(data, prior, paper);
+  }
+  estimation::JointSmootherOptions smoother;
+  smoother.law = LawOf(options.law);
+  smoother.bias_harmonics = options.harmonics;
+  return RunSmootherOn(data, prior, smoother, options.logs);
+}
+
 void RunIdentify(const IdentifyOptions& options) {
   io::CheckOutputFile(options.output_path, "-o");
   io::CheckOutputFile(options.figure_path, "--figure");
@@ -102,29 +120,20 @@ void RunIdentify(const IdentifyOptions& options) {
   for (const auto& path : options.logs) {
     estimation::AppendSamples(io::ReadLog(path, {options.skip_bad_rows}), path, {}, &data);
   }
-  estimation::IdentificationResult result;
-  if (options.method == "paper") {
-    estimation::PaperProcedureOptions paper;
-    paper.law = LawOf(options.law);
-    result = estimation::RunPaperProcedure(data, prior, paper);
-  } else {
-    estimation::JointSmootherOptions smoother;
-    smoother.law = LawOf(options.law);
-    smoother.bias_harmonics = options.harmonics;
-    result = RunSmootherOn(data, prior, smoother, options.logs);
-  }
+  estimation::IdentificationResult result = Fit(options, data, prior);
   result.parameters.description = "identified by pliant identify (" + result.method + ", " +
                                    options.law + ") from " + std::to_string(options.logs.size()) +
                                    " log(s)";
   io::WriteParameters(options.output_path, result.parameters);
+  std::FILE* out = SummaryStream(options.output_path);
   const auto laws = estimation::CompareLaws(result);
   if (options.json) {
     auto json = estimation::IdentificationJson(result, data, laws);
     json["output"] = options.output_path;
-    std::printf("%s\n", json.dump(2).c_str());
+    std::fprintf(out, "%s\n", json.dump(2).c_str());
   } else {
-    std::printf("pliant identify: %s", estimation::IdentificationTable(result, data, laws).c_str());
-    std::printf("  wrote %s\n", options.output_path.c_str());
+    std::fprintf(out, "pliant identify: %s", estimation::IdentificationTable(result, data, laws).c_str());
+    std::fprintf(out, "  wrote %s\n", options.output_path.c_str());
   }
   for (const auto& w : result.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   if (!options.figure_path.empty()) DrawFigure(result, options.figure_path);

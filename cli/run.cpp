@@ -1,6 +1,8 @@
 // The pliant command line: registers every subcommand and runs the one asked for.
 #include "pliant/cli/run.h"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <cstdio>
 #include <exception>
@@ -12,6 +14,7 @@
 
 #include "commands.h"
 #include "pliant/io/input_error.h"
+#include "pliant/io/progress.h"
 
 namespace pliant::cli {
 namespace {
@@ -87,6 +90,14 @@ int Run(int argc, char** argv) {
   add(pliant::cli::AddFilterCommand);
   add(pliant::cli::AddDiagnoseCommand);
   add(pliant::cli::AddMontecarloCommand);
+  add(pliant::cli::AddImportCommand);
+  // Progress goes to a terminal only (io/include/pliant/io/progress.h); --quiet
+  // silences it there too.
+  bool quiet = false;
+  for (CLI::App* sub : app.get_subcommands({})) {
+    sub->add_flag("-q,--quiet", quiet, "No progress on the terminal (it is never shown when "
+                                       "standard error is piped or redirected)");
+  }
 
   // CLI11 answers a mistyped command with "A subcommand is required"; name it.
   if (argc > 1 && argv[1][0] != '-' && !commands.empty()) {
@@ -109,6 +120,7 @@ int Run(int argc, char** argv) {
     if (code != 0) SuggestOptions(app, argc, argv);
     return code == 0 ? 0 : 2;  // usage errors exit 2, like bad input
   }
+  pliant::io::Progress::Enable(pliant::io::Progress::ShowProgressOn(STDERR_FILENO, quiet));
   try {
     for (auto* sub : app.get_subcommands()) commands.at(sub)();
   } catch (const pliant::io::InputError& e) {

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -13,6 +14,8 @@
 #include "pliant/experiments/simulator.h"
 #include "pliant/io/log_writer.h"
 #include "pliant/io/output_path.h"
+#include "pliant/io/progress.h"
+#include "summary_stream.h"
 
 namespace pliant::cli {
 namespace {
@@ -30,22 +33,25 @@ void RunSimulate(const SimulateOptions& options) {
   io::CheckOutputFile(options.figure_path, "--figure");
   const auto scenario = experiments::ReadScenario(options.scenario_path, options.overrides);
   const auto start = std::chrono::steady_clock::now();
+  std::optional<io::Progress> progress(std::in_place, "pliant simulate");
   const auto result = experiments::Simulate(scenario, options.seed);
+  progress.reset();  // the line is erased before the summary
   const double wall_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   io::WriteLog(options.output_path, result.log);
-  std::printf("pliant simulate: %s (%s), seed %llu -> %s\n", scenario.name.c_str(),
+  std::FILE* out = SummaryStream(options.output_path);
+  std::fprintf(out, "pliant simulate: %s (%s), seed %llu -> %s\n", scenario.name.c_str(),
               experiments::ExperimentName(scenario.type),
               static_cast<unsigned long long>(options.seed), options.output_path.c_str());
-  std::printf("  %zu rows, %zu holds, %zu segments; %.1f s simulated in %.2f s (%.0fx real time)\n",
+  std::fprintf(out, "  %zu rows, %zu holds, %zu segments; %.1f s simulated in %.2f s (%.0fx real time)\n",
               result.log.Rows(), result.holds.size(), result.segments.size(),
               result.stats.simulated_s, wall_s, result.stats.simulated_s / wall_s);
-  std::printf("  CVODE: %ld steps, %ld right-hand sides, %ld contact events\n",
+  std::fprintf(out, "  CVODE: %ld steps, %ld right-hand sides, %ld contact events\n",
               result.stats.integrator_steps, result.stats.rhs_evaluations,
               result.stats.contact_events);
   if (!options.figure_path.empty()) {
     experiments::PlotExperiment(scenario, result, options.figure_path);
-    std::printf("  figure -> %s\n", options.figure_path.c_str());
+    std::fprintf(out, "  figure -> %s\n", options.figure_path.c_str());
   }
 }
 

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "pliant/io/input_error.h"
 
@@ -208,6 +209,13 @@ class Checker {
 }  // namespace
 
 LogPlausibility CheckLogPlausibility(const std::string& path, const LogReaderOptions& options) {
+  // Standard input can be read once only, and the command itself reads it:
+  // its rows get the per-row checks alone, and its span is unknown (NaN).
+  if (path == "-") {
+    LogPlausibility unknown;
+    unknown.first_t_s = unknown.last_t_s = std::numeric_limits<double>::quiet_NaN();
+    return unknown;
+  }
   LogReader reader(path, options);
   Checker checker(reader);
   LogPlausibility out;

@@ -1,6 +1,7 @@
 #include "pliant/io/log_reader.h"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -11,6 +12,8 @@
 #include <limits>
 
 #include "log_text.h"
+#include "pliant/io/atomic_file.h"
+#include "pliant/io/progress.h"
 #include "number_text.h"
 
 namespace pliant::io {
@@ -40,6 +43,8 @@ struct LogReader::Buffer {
   std::vector<char> data;
   std::size_t begin = 0, end = 0;
   bool eof = false;
+  std::size_t bytes_read = 0;
+  std::unique_ptr<Progress> progress;  ///< only while reading, and only on a terminal
   ~Buffer() {
     if (fd >= 0) ::close(fd);
   }
@@ -48,15 +53,29 @@ struct LogReader::Buffer {
 LogReader::LogReader(std::string path, LogReaderOptions options)
     : path_(std::move(path)), options_(options), buffer_(std::make_unique<Buffer>()) {
   buffer_->data.resize(std::max<std::size_t>(options_.chunk_bytes, 2));
-  buffer_->fd = ::open(path_.c_str(), O_RDONLY | O_CLOEXEC);
+  // "-" is standard input, named <stdin> in messages.
+  const bool standard_input = path_ == kStandardStream;
+  if (standard_input) path_ = "<stdin>";
+  buffer_->fd = standard_input ? ::fcntl(STDIN_FILENO, F_DUPFD_CLOEXEC, 0)
+                               : ::open(path_.c_str(), O_RDONLY | O_CLOEXEC);
   if (buffer_->fd < 0) {
     Fail(0, std::string("cannot open the log (") + std::strerror(errno) + ")",
          "check the path and that the file is readable");
   }
+  ShowProgress();
   ReadHeader();
   tip_fixed_column_ = header_.Index("tip_fixed");
   segment_column_ = header_.Index("segment");
   PeekFirstRow();
+}
+
+// Megabytes read, of the file's size when it has one (a pipe has not).
+void LogReader::ShowProgress() {
+  if (!Progress::Enabled()) return;
+  struct stat status {};
+  const bool sized = ::fstat(buffer_->fd, &status) == 0 && S_ISREG(status.st_mode);
+  buffer_->progress = std::make_unique<Progress>(
+      "reading " + path_, "MB", sized ? static_cast<double>(status.st_size) / 1e6 : 0.0);
 }
 
 LogReader::~LogReader() = default;
@@ -93,6 +112,9 @@ bool LogReader::ReadLine(std::string_view& line) {
     }
     if (got == 0) b.eof = true;
     b.end += static_cast<std::size_t>(got);
+    b.bytes_read += static_cast<std::size_t>(got);
+    if (b.progress) b.progress->Set(static_cast<double>(b.bytes_read) / 1e6);
+    if (b.eof) b.progress.reset();  // erases the line
   }
 }
 

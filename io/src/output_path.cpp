@@ -38,8 +38,12 @@ void CheckWritableDirectory(const fs::path& directory, const std::string& option
 }  // namespace
 
 void CheckOutputFile(const std::string& path, const std::string& option) {
-  if (path.empty()) return;
+  if (path.empty() || path == "-") return;  // standard output
   std::error_code error;
+  const fs::file_status status = fs::status(path, error);
+  // A FIFO or a device (/dev/null) is written through, never replaced: its
+  // directory need not be writable (atomic_file.h).
+  if (fs::is_fifo(status) || fs::is_character_file(status)) return;
   if (fs::is_directory(path, error)) {
     throw InputError(option + " " + path, 0, 0, "is a directory",
                      "give a file name (e.g. " + (fs::path(path) / "out").string() + ")");

@@ -47,7 +47,9 @@ struct LogPlausibility {
 };
 
 /// Streams the log at `path` once. Throws InputError (exit 2) when its
-/// physics says degrees or milliseconds.
+/// physics says degrees or milliseconds. Standard input ("-") is not read: it
+/// can be read once only, so it gets the reader's per-row checks alone and its
+/// span is NaN.
 LogPlausibility CheckLogPlausibility(const std::string& path,
                                      const LogReaderOptions& options = {});
 

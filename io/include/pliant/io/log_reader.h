@@ -27,7 +27,8 @@ struct LogReaderOptions {
 
 class LogReader {
  public:
-  /// Opens the file and reads metadata and header. Throws InputError.
+  /// Opens the file ("-": standard input, named "<stdin>" in messages and by
+  /// path()) and reads metadata and header. Throws InputError.
   explicit LogReader(std::string path, LogReaderOptions options = {});
   ~LogReader();
   LogReader(const LogReader&) = delete;
@@ -55,6 +56,7 @@ class LogReader {
   [[noreturn]] void Fail(std::size_t column, std::string problem, std::string fix) const;
   [[noreturn]] void FailFieldCount(std::size_t fields) const;
   void ReadHeader();
+  void ShowProgress();
   void AddAbsentJoints();
   void PeekFirstRow();
   bool TakeLine(std::string_view& line);
