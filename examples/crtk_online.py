@@ -20,7 +20,6 @@ crtk_python_client and ``import pliant`` working (docs/python.md).
 
 import argparse
 import sys
-import time
 
 import numpy as np
 
@@ -46,11 +45,12 @@ def correct_stream(online_filter, readings):
         yield corrected_positions(jp, estimate), tuple(float(s) for s in estimate.sd), estimate
 
 
-def measured_js_readings(ral, arm, period_s):
-    """measured_js tuples from a CRTK arm until ROS shuts down (ROS 2 only)."""
+def measured_js_readings(ral, arm, rate_hz):
+    """measured_js tuples from a CRTK arm at rate_hz until ROS shuts down (ROS 2 only)."""
+    rate = ral.create_rate(rate_hz)
     while not ral.is_shutdown():
         yield arm.measured_js()
-        time.sleep(period_s)
+        rate.sleep()
 
 
 def main(argv=None):
@@ -77,7 +77,7 @@ def main(argv=None):
     ral.spin()
     online_filter = pliant.Filter(pliant.load_parameters(args.params),
                                   sample_period_s=1.0 / args.rate)
-    readings = measured_js_readings(ral, arm, 1.0 / args.rate)
+    readings = measured_js_readings(ral, arm, args.rate)
     for n, (positions, sd, estimate) in enumerate(correct_stream(online_filter, readings)):
         if n % args.print_every == 0:
             print(f"q1 {positions[0]:+.6f} ± {sd[0]:.2e} rad   q2 {positions[1]:+.6f} ± "

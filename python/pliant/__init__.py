@@ -22,7 +22,7 @@ import tempfile
 
 import numpy as np
 
-from ._pliant import (  # noqa: F401  (the public API)
+from ._pliant import (  # the public API, with __all__ below
     FLAG_DEPTH_OUT_OF_RANGE,
     FLAG_EFFORT_SATURATED,
     FLAG_MISSING,
@@ -45,7 +45,9 @@ from . import _pliant
 __all__ = [
     "InputError", "Log", "read_log", "write_log", "Parameters", "load_parameters",
     "parameters_from_json", "correct", "correct_log", "identify", "diagnose", "filter_log",
-    "Filter", "FilterEstimate", "filter_option_defaults",
+    "Filter", "FilterEstimate", "filter_option_defaults", "FLAG_REJECTED", "FLAG_MISSING",
+    "FLAG_DEPTH_OUT_OF_RANGE", "FLAG_EFFORT_SATURATED", "FLAG_MODEL_MISMATCH", "FLAG_REACQUIRED",
+    "FLAG_REPAIRED", "FLAG_OUTPUT_LIMITED",
 ]
 
 
