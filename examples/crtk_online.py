@@ -27,7 +27,8 @@ import pliant
 
 
 def filter_sample(jp, jf, t):
-    """One measured_js reading as the filter's sample: (t s, q1 rad, q2 rad, q3 m, tau1 N·m, tau2 N·m)."""
+    """One measured_js reading as the filter's sample:
+    (t s, q1 rad, q2 rad, q3 m, tau1 N·m, tau2 N·m)."""
     return np.array([t, jp[0], jp[1], jp[2], jf[0], jf[1]], dtype=np.float64)
 
 

@@ -80,7 +80,10 @@ void BindEstimate(py::module_& m) {
       .def_readonly("covariance", &FilterEstimate::covariance_rad2,
                     "2×2 mean squared error of `corrected` (rad²).")
       .def_property_readonly(
-          "sd", [](const FilterEstimate& e) { return Eigen::Vector2d(e.covariance_rad2.diagonal().cwiseSqrt()); },
+          "sd",
+          [](const FilterEstimate& e) {
+            return Eigen::Vector2d(e.covariance_rad2.diagonal().cwiseSqrt());
+          },
           "q1_sd, q2_sd (rad): square roots of the covariance's diagonal.")
       .def_readonly("filtered", &FilterEstimate::filtered_rad,
                     "The filter's mean of the tip angles (rad), before the output step limit.")
@@ -141,7 +144,8 @@ void BindFilter(py::module_& m) {
           "reference, NaN when absent); tip_fixed (the tip is clamped or in a divot). NaN "
           "marks a missing value. Returns a FilterEstimate (corrected, covariance, …).")
       .def(
-          "step", [](ComplianceFilter& f, const Array& sample) { return f.Step(SampleFromArray(sample)); },
+          "step",
+          [](ComplianceFilter& f, const Array& sample) { return f.Step(SampleFromArray(sample)); },
           py::arg("sample"),
           "Advances one control period from a sequence (t, q1, q2, q3, tau1, tau2[, q1_ref, "
           "q2_ref[, tip_fixed]]) in s, rad, rad, m, N·m, N·m, rad, rad, 0/1.")

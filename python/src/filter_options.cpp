@@ -42,7 +42,9 @@ const std::pair<const char*, Field> kFields[] = {
 
 std::string Names() {
   std::string names;
-  for (const auto& [name, field] : kFields) names += (names.empty() ? "" : ", ") + std::string(name);
+  for (const auto& [name, field] : kFields) {
+    names += (names.empty() ? "" : ", ") + std::string(name);
+  }
   return names;
 }
 
@@ -99,7 +101,8 @@ FilterOptions FilterOptionsFrom(const py::dict& given) {
     const std::string prefix = "FilterOptions::", dash = " \u2014 ";
     if (error.rfind(prefix, 0) == 0) error.erase(0, prefix.size());
     const std::size_t at = error.find(dash);
-    const std::string fix = at == std::string::npos ? "see docs/filter.md" : error.substr(at + dash.size());
+    const std::string fix =
+        at == std::string::npos ? "see docs/filter.md" : error.substr(at + dash.size());
     throw io::InputError("filter options", 0, 0, error.substr(0, at), fix);
   }
   return options;
