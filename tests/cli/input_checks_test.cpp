@@ -23,7 +23,7 @@ using testing::RunCommand;
 const std::string kCli = PLIANT_CLI;
 const std::string kSource = PLIANT_SOURCE_DIR;
 const std::string kParams = kSource + "/data/paper.json";
-const std::string kDvrkFile = kSource + "/tests/io/data/dvrk-compensation.json";
+const std::string kDvrkFile = kSource + "/data/real/jhu-2017/dvrk-compensation.json";
 
 std::string Quoted(const fs::path& path) { return "'" + path.string() + "'"; }
 

@@ -15,7 +15,7 @@
 namespace pliant::io {
 namespace {
 
-const std::string kRealFile = std::string(PLIANT_SOURCE_DIR) + "/tests/io/data/dvrk-compensation.json";
+const std::string kRealFile = std::string(PLIANT_SOURCE_DIR) + "/data/real/jhu-2017/dvrk-compensation.json";
 
 std::string Text(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
