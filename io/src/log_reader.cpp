@@ -54,6 +54,7 @@ LogReader::LogReader(std::string path, LogReaderOptions options)
          "check the path and that the file is readable");
   }
   ReadHeader();
+  PeekFirstRow();
 }
 
 LogReader::~LogReader() = default;
@@ -96,8 +97,7 @@ bool LogReader::ReadLine(std::string_view& line) {
 const double* LogReader::Next() {
   if (finished_) return nullptr;
   std::string_view line;
-  while (ReadLine(line)) {
-    ++line_;
+  while (TakeLine(line)) {
     if (Trim(line).empty()) continue;  // blank lines (e.g. a doubled final newline)
     if (ParseRow(line)) {
       ++rows_;
@@ -118,17 +118,29 @@ const double* LogReader::Next() {
   return nullptr;
 }
 
+// The row PeekFirstRow read ahead comes first; line_ already counts it.
+bool LogReader::TakeLine(std::string_view& line) {
+  if (has_pending_) {
+    has_pending_ = false;
+    line = pending_line_;
+    return true;
+  }
+  if (!ReadLine(line)) return false;
+  ++line_;
+  return true;
+}
+
 void LogReader::FailFieldCount(std::size_t fields) const {
   Fail(0,
        "row has " + std::to_string(fields) + (fields == 1 ? " field" : " fields") +
-           " but the header has " + std::to_string(row_.size()) + " columns",
+           " but the header has " + std::to_string(file_columns_) + " columns",
        "every row needs one value per header column; look for a missing or extra comma");
 }
 
 bool LogReader::ParseRow(std::string_view line) {
   const char* p = line.data();
   const char* const end = p + line.size();
-  const std::size_t columns = row_.size();
+  const std::size_t columns = file_columns_;
   std::size_t bad_column = 0;  // first required column without a finite value, from 1
   std::string_view bad_text;
   for (std::size_t c = 0; c < columns; ++c) {
@@ -184,8 +196,30 @@ bool LogReader::ParseRow(std::string_view line) {
              (bad_text.empty() ? std::string("no value") : Quote(bad_text)),
          kRequiredFix);
   }
+  CheckUnrecordedJointsEmpty();
   CheckRanges();
   return true;
+}
+
+// A joint that the first row left empty stays empty: a value appearing later means
+// the rows are misaligned, or the joint was recorded after all.
+void LogReader::CheckUnrecordedJointsEmpty() const {
+  for (int j = 0; j < 2; ++j) {
+    if (header_.joint_recorded[static_cast<std::size_t>(j)]) continue;
+    for (int r : {kQ1 + j, kTau1 + j}) {
+      const auto column = static_cast<std::size_t>(required_[r]);
+      if (column < file_columns_ && !std::isnan(row_[column])) {
+        const std::string name(kRequiredColumns[static_cast<std::size_t>(r)]);
+        Fail(column + 1,
+             "joint " + std::to_string(j + 1) + " is not recorded (q" + std::to_string(j + 1) +
+                 " and tau" + std::to_string(j + 1) + " are empty in the first data row) but " +
+                 name + " holds " + detail::NumberText(row_[column]) + " here",
+             "give q" + std::to_string(j + 1) + " and tau" + std::to_string(j + 1) +
+                 " on every row, or leave both empty on every row of a log that records one "
+                 "joint");
+      }
+    }
+  }
 }
 
 // Unit mistakes (degrees, millimetres, mN·m) are the common failures of real

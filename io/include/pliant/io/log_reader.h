@@ -55,6 +55,10 @@ class LogReader {
   [[noreturn]] void Fail(std::size_t column, std::string problem, std::string fix) const;
   [[noreturn]] void FailFieldCount(std::size_t fields) const;
   void ReadHeader();
+  void AddAbsentJoints();
+  void PeekFirstRow();
+  bool TakeLine(std::string_view& line);
+  void CheckUnrecordedJointsEmpty() const;
   void CheckRanges();
 
   std::string path_;
@@ -64,6 +68,9 @@ class LogReader {
   std::vector<double> row_;
   std::vector<int> required_;      // column index of each required column
   std::vector<char> is_required_;  // per column in file order: 1 when required
+  std::size_t file_columns_ = 0;    // columns in the file; absent joints are appended after
+  std::string pending_line_;        // the first data row, read ahead to see which joints it has
+  bool has_pending_ = false;
   std::size_t line_ = 0;
   std::size_t header_line_ = 0;
   std::size_t rows_ = 0;
