@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "commands.h"
+#include "pliant/estimation/identification_quasi_static.h"
 #include "pliant/estimation/identification_report.h"
 #include "pliant/estimation/joint_smoother.h"
 #include "pliant/experiments/plot.h"
@@ -20,7 +21,8 @@ namespace {
 struct IdentifyOptions {
   std::vector<std::string> logs;
   std::string output_path;
-  std::string method = "smoother";
+  std::string method = "auto";
+  bool no_held_friction = false;
   std::string law = "inverse_cubic";
   std::string prior_path;
   std::string figure_path;
@@ -66,13 +68,24 @@ void DrawFigure(const estimation::IdentificationResult& r, const std::string& pa
 
 void RunIdentify(const IdentifyOptions& options) {
   estimation::IdentificationData data;
+  bool all_quasi_static = true;
   for (const auto& path : options.logs) {
-    estimation::AppendSamples(io::ReadLog(path, {options.skip_bad_rows}), path, {}, &data);
+    const io::Log log = io::ReadLog(path, {options.skip_bad_rows});
+    all_quasi_static = all_quasi_static && log.header.QuasiStatic();
+    estimation::AppendSamples(log, path, {}, &data);
   }
+  // Quasi-static means (one row per pose) have no dynamics for the smoother
+  // to read: they get the clamp-by-clamp fit with the held friction.
+  const std::string method =
+      options.method != "auto" ? options.method : (all_quasi_static ? "quasi_static" : "smoother");
   const models::ModelParameters prior =
       options.prior_path.empty() ? estimation::PaperPrior() : io::ReadParameters(options.prior_path);
   estimation::IdentificationResult result;
-  if (options.method == "paper") {
+  if (method == "quasi_static") {
+    estimation::QuasiStaticOptions quasi;
+    quasi.held_friction = !options.no_held_friction;
+    result = estimation::RunQuasiStaticIdentification(data, prior, quasi);
+  } else if (method == "paper") {
     estimation::PaperProcedureOptions paper;
     paper.law = LawOf(options.law);
     result = estimation::RunPaperProcedure(data, prior, paper);
@@ -111,8 +124,10 @@ Command AddIdentifyCommand(CLI::App& app) {
   sub->add_option("-o,--output", options->output_path, "Parameters file to write (JSON), atomically")
       ->required();
   sub->add_option("--method", options->method,
-                  "paper: the paper's procedure; smoother: one Ceres problem with covariance")
-      ->check(CLI::IsMember({"paper", "smoother"}))
+                  "paper: the paper's procedure; smoother: one Ceres problem with covariance; "
+                  "quasi_static: clamp by clamp with the held friction (auto: quasi_static when "
+                  "every log is '# timing: quasi-static', else smoother)")
+      ->check(CLI::IsMember({"auto", "paper", "smoother", "quasi_static"}))
       ->capture_default_str();
   sub->add_option("--model", options->law, "Compliance law K(L)")
       ->check(CLI::IsMember({"inverse_cubic", "direct_cubic", "beam_series"}))
@@ -124,6 +139,8 @@ Command AddIdentifyCommand(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--figure", options->figure_path,
                   "Also draw 1/K against depth with the law and its 95 % band (.png or .svg)");
+  sub->add_flag("--no-held-friction", options->no_held_friction,
+                "quasi_static: fit the paper's form only (no held_friction effect)");
   sub->add_flag("--json", options->json, "Print the results as JSON");
   sub->add_flag("--skip-bad-rows", options->skip_bad_rows,
                 "Drop and count rows with NaN/Inf/empty required values instead of stopping");

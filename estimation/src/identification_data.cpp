@@ -57,6 +57,14 @@ struct Hold {
   }
 };
 
+// A joint the log does not record (NaN) neither moves nor holds still.
+bool MovedBeyond(const Eigen::Vector2d& angle, const Eigen::Vector2d& first, double tolerance) {
+  for (int j = 0; j < 2; ++j) {
+    if (std::abs(angle[j] - first[j]) > tolerance) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 void AppendSamples(const io::Log& log, const std::string& name,
@@ -100,8 +108,8 @@ void AppendSamples(const io::Log& log, const std::string& name,
     s.segment = data->segments - 1;
     s.log = int(data->logs.size()) - 1;
     if (hold.rows > 0 && (!options.average_holds ||
-                          (s.angle_rad - hold.first_angle_rad).cwiseAbs().maxCoeff() >
-                              options.hold_tolerance_rad ||
+                          MovedBeyond(s.angle_rad, hold.first_angle_rad,
+                                      options.hold_tolerance_rad) ||
                           std::abs(s.insertion_depth_m - hold.first_depth_m) > 1e-4)) {
       flush();
     }

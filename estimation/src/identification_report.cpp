@@ -23,6 +23,12 @@ double Sd(const models::ParameterCovariance& c, std::size_t i) {
 
 // The value a covariance name refers to.
 double ValueOf(const models::ModelParameters& p, const std::string& name) {
+  for (const auto& effect : p.effects) {  // "EFFECT.PARAMETER"
+    for (std::size_t k = 0; k < effect.parameter_names.size(); ++k) {
+      if (name == effect.name + "." + effect.parameter_names[k]) return effect.values[k];
+    }
+  }
+  if (name.rfind("joint", 0) != 0 || name.size() < 8) return std::nan("");
   const int j = name[5] - '1';
   const auto& joint = p.joints[j];
   const std::string field = name.substr(7);
