@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -68,10 +69,11 @@ void DrawFigure(const estimation::IdentificationResult& r, const std::string& pa
 
 void RunIdentify(const IdentifyOptions& options) {
   estimation::IdentificationData data;
-  bool all_quasi_static = true;
+  bool all_quasi_static = true, both_joints = true;
   for (const auto& path : options.logs) {
     const io::Log log = io::ReadLog(path, {options.skip_bad_rows});
     all_quasi_static = all_quasi_static && log.header.QuasiStatic();
+    both_joints = both_joints && log.header.JointRecorded(1) && log.header.JointRecorded(2);
     estimation::AppendSamples(log, path, {}, &data);
   }
   // Quasi-static means (one row per pose) have no dynamics for the smoother
@@ -81,6 +83,10 @@ void RunIdentify(const IdentifyOptions& options) {
   const models::ModelParameters prior =
       options.prior_path.empty() ? estimation::PaperPrior() : io::ReadParameters(options.prior_path);
   estimation::IdentificationResult result;
+  if (method == "smoother" && !both_joints) {
+    throw std::runtime_error("the joint smoother needs both joints recorded in every log; these "
+                             "logs record one joint each — use --method quasi_static");
+  }
   if (method == "quasi_static") {
     estimation::QuasiStaticOptions quasi;
     quasi.held_friction = !options.no_held_friction;

@@ -151,9 +151,11 @@ void Store(const JointFit& fit, int j, const QuasiStaticOptions& options,
   for (int i = 0; i < 4; ++i)
     joint.compliance.cubic.coefficients[i] = fit.scaled_law[i] * fit.law_scale[i];
   joint.backlash_rad = fit.backlash_rad;
-  // Equation (2)'s switch guards δ's sign against noise; with no clearance it
-  // would only leave small loads uncorrected.
-  if (fit.backlash_rad == 0.0) joint.tau_min_nm = 0.0;
+  // Equation (2)'s switch guards δ's sign against effort noise; on quasi-static
+  // means δ is a fraction of a mrad (the held friction carries the loops'
+  // width), and the switch would leave every load below tau_min uncorrected:
+  // K·tau_min is 4–8 mrad on the real clamped beam.
+  joint.tau_min_nm = 0.0;
   double lo = 1e9, hi = -1e9;
   for (const auto* s : samples) lo = std::min(lo, s->insertion_depth_m), hi = std::max(hi, s->insertion_depth_m);
   joint.depth_min_m = lo;

@@ -63,10 +63,16 @@ std::array<std::vector<LawComparison>, 2> CompareLaws(const IdentificationResult
   return out;
 }
 
+static const char* MethodName(const std::string& method) {
+  if (method == "paper") return "the paper's procedure";
+  if (method == "quasi_static") return "quasi-static clamps with the held friction";
+  return "joint smoother";
+}
+
 std::string IdentificationTable(const IdentificationResult& r, const IdentificationData& data,
                                 const std::array<std::vector<LawComparison>, 2>& laws) {
   std::string out = Line("%s, %s law: %zu log(s), %zu rows -> %zu samples (%zu tip held), %.2f s",
-                         r.method == "paper" ? "the paper's procedure" : "joint smoother",
+                         MethodName(r.method),
                          models::ComplianceFormName(r.parameters.joints[0].compliance.form),
                          data.logs.size(), data.log_rows, data.samples.size(),
                          data.CountTipFixed(), r.seconds);
