@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "commands.h"
+#include "identify_figures.h"
 #include "pliant/estimation/identification_quasi_static.h"
 #include "pliant/estimation/identification_report.h"
 #include "pliant/estimation/joint_smoother.h"
@@ -115,7 +116,10 @@ void RunIdentify(const IdentifyOptions& options) {
     std::printf("  wrote %s\n", options.output_path.c_str());
   }
   for (const auto& w : result.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
-  if (!options.figure_path.empty()) DrawFigure(result, options.figure_path);
+  if (!options.figure_path.empty()) {
+    DrawFigure(result, options.figure_path);
+    DrawDataFigures(data, options.figure_path);
+  }
 }
 
 }  // namespace
@@ -144,7 +148,7 @@ Command AddIdentifyCommand(CLI::App& app) {
       ->check(CLI::Range(0, 6))
       ->capture_default_str();
   sub->add_option("--figure", options->figure_path,
-                  "Also draw 1/K against depth with the law and its 95 % band (.png or .svg)");
+                  "Also draw 1/K against depth with the law and its 95 % band (.png or .svg), and beside it the data: _fig4 (free-tip effort per depth), _fig5 (a clamped loop)");
   sub->add_flag("--no-held-friction", options->no_held_friction,
                 "quasi_static: fit the paper's form only (no held_friction effect)");
   sub->add_flag("--json", options->json, "Print the results as JSON");
