@@ -5,6 +5,7 @@
 #include <string>
 
 #include "commands.h"
+#include "correct_tare.h"
 #include "pliant/estimation/log_correction.h"
 #include "pliant/io/log_plausibility.h"
 #include "pliant/io/output_path.h"
@@ -19,6 +20,7 @@ struct CorrectOptions {
   std::string model_name = "paper";
   std::string input_path;
   std::string output_path;
+  std::string tare;
   bool skip_bad_rows = false;
 };
 
@@ -48,12 +50,20 @@ void RunCorrect(const CorrectOptions& options) {
   io::CheckOutputFile(options.output_path, "-o");
   const auto parameters = io::ReadParameters(options.params_path);
   io::CheckLogPlausibilityAndWarn(options.input_path, {options.skip_bad_rows});
-  const estimation::ComplianceCorrector corrector(
+  estimation::ComplianceCorrector corrector(
       parameters, *estimation::ParseCorrectionModel(options.model_name));
+  const std::string tare =
+      options.tare.empty() ? "" : TareFromLog(options.input_path, options.tare, &corrector);
   const auto summary = estimation::CorrectLog(
       options.input_path, options.output_path, corrector,
       options.model_name + " model, parameters " + options.params_path, {options.skip_bad_rows});
   PrintSummary(options, summary);
+  std::printf("%s", tare.c_str());
+  if (!corrector.extra_effects().empty()) {
+    std::string names;
+    for (const auto& n : corrector.extra_effects().Names()) names += (names.empty() ? "" : ", ") + n;
+    std::printf("  effects from the parameters file: %s\n", names.c_str());
+  }
 }
 
 }  // namespace
@@ -72,6 +82,9 @@ Command AddCorrectCommand(CLI::App& app) {
       ->required();
   sub->add_option("-o,--output", options->output_path, "Output log, written atomically")
       ->required();
+  sub->add_option("--tare", options->tare,
+                  "Tare the bias on the log's unloaded rows: auto (the longest run with a steady "
+                  "load) or T0:T1 (rows with t in that range, s)");
   sub->add_flag("--skip-bad-rows", options->skip_bad_rows,
                 "Drop and count rows with NaN/Inf/empty required values instead of stopping");
   return [options] { RunCorrect(*options); };

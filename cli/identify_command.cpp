@@ -8,6 +8,8 @@
 #include <vector>
 
 #include "commands.h"
+#include "identify_figures.h"
+#include "pliant/estimation/identification_quasi_static.h"
 #include "pliant/estimation/identification_report.h"
 #include "pliant/estimation/joint_smoother.h"
 #include "pliant/experiments/plot.h"
@@ -25,7 +27,8 @@ namespace {
 struct IdentifyOptions {
   std::vector<std::string> logs;
   std::string output_path;
-  std::string method = "smoother";
+  std::string method = "auto";
+  bool no_held_friction = false;
   std::string law = "inverse_cubic";
   std::string prior_path;
   std::string figure_path;
@@ -93,11 +96,16 @@ estimation::IdentificationResult RunSmootherOn(const estimation::IdentificationD
 }
 
 // The fit, with its progress (elapsed time: Ceres gives no share done).
-estimation::IdentificationResult Fit(const IdentifyOptions& options,
+estimation::IdentificationResult Fit(const IdentifyOptions& options, const std::string& method,
                                      const estimation::IdentificationData& data,
                                      const models::ModelParameters& prior) {
-  io::Progress progress("pliant identify: " + options.method + " fit");
-  if (options.method == "paper") {
+  io::Progress progress("pliant identify: " + method + " fit");
+  if (method == "quasi_static") {
+    estimation::QuasiStaticOptions quasi;
+    quasi.held_friction = !options.no_held_friction;
+    return estimation::RunQuasiStaticIdentification(data, prior, quasi);
+  }
+  if (method == "paper") {
     estimation::PaperProcedureOptions paper;
     paper.law = LawOf(options.law);
     return estimation::RunPaperProcedure(data, prior, paper);
@@ -117,10 +125,26 @@ void RunIdentify(const IdentifyOptions& options) {
     io::CheckLogPlausibilityAndWarn(path, {options.skip_bad_rows});
   }
   estimation::IdentificationData data;
+  bool all_quasi_static = true, both_joints = true;
   for (const auto& path : options.logs) {
-    estimation::AppendSamples(io::ReadLog(path, {options.skip_bad_rows}), path, {}, &data);
+    const io::Log log = io::ReadLog(path, {options.skip_bad_rows});
+    all_quasi_static = all_quasi_static && log.header.QuasiStatic();
+    both_joints = both_joints && log.header.JointRecorded(1) && log.header.JointRecorded(2);
+    estimation::AppendSamples(log, path, {}, &data);
   }
-  estimation::IdentificationResult result = Fit(options, data, prior);
+  // Quasi-static means (one row per pose) have no dynamics for the smoother
+  // to read: they get the clamp-by-clamp fit with the held friction.
+  const std::string method =
+      options.method != "auto" ? options.method : (all_quasi_static ? "quasi_static" : "smoother");
+  if (method == "smoother" && !both_joints) {
+    std::string files;
+    for (const auto& log : options.logs) files += (files.empty() ? "" : ", ") + log;
+    throw io::InputError(files, 0, 0,
+                         "the joint smoother needs both joints recorded in every log, and these "
+                         "logs record one joint each",
+                         "use --method quasi_static (or auto)");
+  }
+  estimation::IdentificationResult result = Fit(options, method, data, prior);
   result.parameters.description = "identified by pliant identify (" + result.method + ", " +
                                    options.law + ") from " + std::to_string(options.logs.size()) +
                                    " log(s)";
@@ -137,7 +161,10 @@ void RunIdentify(const IdentifyOptions& options) {
     std::fprintf(out, "  wrote %s\n", options.output_path.c_str());
   }
   for (const auto& w : result.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
-  if (!options.figure_path.empty()) DrawFigure(result, options.figure_path);
+  if (!options.figure_path.empty()) {
+    DrawFigure(result, options.figure_path);
+    DrawDataFigures(data, options.figure_path);
+  }
 }
 
 }  // namespace
@@ -152,8 +179,10 @@ Command AddIdentifyCommand(CLI::App& app) {
   sub->add_option("-o,--output", options->output_path, "Parameters file to write (JSON), atomically")
       ->required();
   sub->add_option("--method", options->method,
-                  "paper: the paper's procedure; smoother: one Ceres problem with covariance")
-      ->check(CLI::IsMember({"paper", "smoother"}))
+                  "paper: the paper's procedure; smoother: one Ceres problem with covariance; "
+                  "quasi_static: clamp by clamp with the held friction (auto: quasi_static when "
+                  "every log is '# timing: quasi-static', else smoother)")
+      ->check(CLI::IsMember({"auto", "paper", "smoother", "quasi_static"}))
       ->capture_default_str();
   sub->add_option("--model", options->law, "Compliance law K(L)")
       ->check(CLI::IsMember({"inverse_cubic", "direct_cubic", "beam_series"}))
@@ -164,7 +193,9 @@ Command AddIdentifyCommand(CLI::App& app) {
       ->check(CLI::Range(0, 6))
       ->capture_default_str();
   sub->add_option("--figure", options->figure_path,
-                  "Also draw 1/K against depth with the law and its 95 % band (.png or .svg)");
+                  "Also draw 1/K against depth with the law and its 95 % band (.png or .svg), and beside it the data: _fig4 (free-tip effort per depth), _fig5 (a clamped loop)");
+  sub->add_flag("--no-held-friction", options->no_held_friction,
+                "quasi_static: fit the paper's form only (no held_friction effect)");
   sub->add_flag("--json", options->json, "Print the results as JSON");
   sub->add_flag("--skip-bad-rows", options->skip_bad_rows,
                 "Drop and count rows with NaN/Inf/empty required values instead of stopping");

@@ -75,7 +75,8 @@ ComplianceCorrector::ComplianceCorrector(const models::ModelParameters& paramete
       backlash_sign_(parameters.joints[0].backlash_rad, parameters.joints[1].backlash_rad),
       backlash_deadzone_(parameters.joints[0].backlash_rad, parameters.joints[1].backlash_rad,
                          parameters.joints[0].deadzone_width_nm,
-                         parameters.joints[1].deadzone_width_nm) {
+                         parameters.joints[1].deadzone_width_nm),
+      extra_(parameters.effects) {
   const auto& j = parameters.joints;
   for (const auto& joint : j) {
     const auto table = TableOrFlat(joint);
@@ -92,15 +93,19 @@ ComplianceCorrector::ComplianceCorrector(const models::ModelParameters& paramete
 }
 
 JointCorrection ComplianceCorrector::Correct(const Eigen::Vector3d& q,
-                                             const Eigen::Vector2d& measured_torque_nm) const {
+                                             const Eigen::Vector2d& measured_torque_nm,
+                                             const Eigen::Vector2d& travel_since_reversal_rad) const {
   models::JointState<double> state;
   state.encoder_angle_rad = q.head<2>();
   state.insertion_depth_m = q[2];
+  state.travel_since_reversal_rad = travel_since_reversal_rad;
+  const Eigen::Vector2d internal = extra_.InternalTorque(state);
   const Eigen::Vector2d table = bias_(bias_values_.data(), state);
   const Eigen::Vector2d fourier = bias_fourier_(fourier_values_.data(), state);
   for (int j = 0; j < 2; ++j) {
     const bool smooth = parameters_.joints[j].bias_form == models::BiasForm::kFourier;
-    state.external_torque_nm[j] = measured_torque_nm[j] - (smooth ? fourier[j] : table[j]);
+    state.external_torque_nm[j] =
+        measured_torque_nm[j] - (smooth ? fourier[j] : table[j]) - internal[j] - bias_offset_nm_[j];
   }
 
   JointCorrection out;
@@ -115,6 +120,7 @@ JointCorrection ComplianceCorrector::Correct(const Eigen::Vector3d& q,
   } else {
     out.deflection_rad = backlash_deadzone_(deadzone_values_.data(), state) + bend;
   }
+  out.deflection_rad += extra_.Deflection(state);
   out.corrected_rad = q.head<2>() - out.deflection_rad;
   for (const auto& joint : parameters_.joints) {
     out.depth_clamped |= q[2] < joint.depth_min_m || q[2] > joint.depth_max_m;

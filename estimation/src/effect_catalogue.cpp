@@ -14,6 +14,7 @@
 #include "pliant/models/effects/deflection_coupling.h"
 #include "pliant/models/effects/effort_delay.h"
 #include "pliant/models/effects/effort_drift.h"
+#include "pliant/models/effects/held_friction.h"
 #include "pliant/models/effects/joint_friction.h"
 #include "pliant/models/effects/load_dependent_compliance.h"
 
@@ -53,6 +54,8 @@ EffectCatalogue& EffectCatalogue::Global() {
     c->Add<models::BiasTorqueCrossJointEffect>();
     c->Add<models::BacklashDepthEffect>();
     c->Add<models::EffortDelayEffect>();
+    // Found in the real clamped-beam data (docs/real-data.md).
+    c->Add<models::HeldFrictionEffect>();
     return c;
   }();
   return *catalogue;

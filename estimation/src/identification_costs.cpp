@@ -8,6 +8,7 @@
 #include <ceres/autodiff_cost_function.h>
 #include <ceres/dynamic_autodiff_cost_function.h>
 
+#include "pliant/models/effects/held_friction.h"
 #include "pliant/models/effects/backlash.h"
 #include "pliant/models/effects/bias_torque_fourier.h"
 #include "pliant/models/effects/compliance.h"
@@ -93,7 +94,43 @@ struct EffortResidual {
   }
 };
 
+struct HeldFrictionAngleResidual {
+  models::HeldFrictionEffect friction;
+  IdentificationSample sample;
+  int joint;
+  models::ComplianceForm form;
+  std::array<double, 4> law_scale;
+  double bias_nm, presliding_travel_rad, inverse_sd;
+
+  template <typename T>
+  bool operator()(const T* tip, const T* scaled_law, const T* held, const T* delta,
+                  T* residual) const {
+    T law[4];
+    for (int i = 0; i < 4; ++i) law[i] = scaled_law[i] * law_scale[i];
+    models::JointState<T> state;
+    state.travel_since_reversal_rad = sample.travel_since_reversal_rad.cast<T>();
+    const T p[3] = {held[0], held[0], T(presliding_travel_rad)};
+    const T load = T(sample.effort_nm[joint] - bias_nm) - friction(p, state)[joint];
+    const T depth(sample.insertion_depth_m);
+    const T side = load > 0.0 ? T(1.0) : (load < 0.0 ? T(-1.0) : T(0.0));
+    residual[0] = (T(sample.angle_rad[joint]) - tip[0] -
+                   models::EvaluateCompliance(form, law, depth) * load - delta[0] * side) *
+                  inverse_sd;
+    return true;
+  }
+};
+
 }  // namespace
+
+ceres::CostFunction* NewHeldFrictionAngleResidual(const IdentificationSample& sample, int joint,
+                                                  models::ComplianceForm form,
+                                                  const std::array<double, 4>& law_scale,
+                                                  double bias_nm, double presliding_travel_rad,
+                                                  double sd_rad) {
+  return new ceres::AutoDiffCostFunction<HeldFrictionAngleResidual, 1, 1, 4, 1, 1>(
+      new HeldFrictionAngleResidual{{}, sample, joint, form, law_scale, bias_nm,
+                                    presliding_travel_rad, 1.0 / sd_rad});
+}
 
 ceres::CostFunction* NewEffortResidual(const IdentificationSample& sample, int joint,
                                        int harmonics, double reference_depth_m, double sd_nm,

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "pliant/models/travel_since_reversal.h"
+
 namespace pliant::estimation {
 
 bool SampleExtractionOptions::IsValid(std::string* error) const {
@@ -40,6 +42,7 @@ struct Hold {
       sum.angle_rad += s.angle_rad;
       sum.insertion_depth_m += s.insertion_depth_m;
       sum.effort_nm += s.effort_nm;
+      sum.travel_since_reversal_rad += s.travel_since_reversal_rad;
     }
     ++rows;
   }
@@ -48,10 +51,19 @@ struct Hold {
     mean.angle_rad /= rows;
     mean.insertion_depth_m /= rows;
     mean.effort_nm /= rows;
+    mean.travel_since_reversal_rad /= rows;
     mean.rows = rows;
     return mean;
   }
 };
+
+// A joint the log does not record (NaN) neither moves nor holds still.
+bool MovedBeyond(const Eigen::Vector2d& angle, const Eigen::Vector2d& first, double tolerance) {
+  for (int j = 0; j < 2; ++j) {
+    if (std::abs(angle[j] - first[j]) > tolerance) return true;
+  }
+  return false;
+}
 
 }  // namespace
 
@@ -64,6 +76,7 @@ void AppendSamples(const io::Log& log, const std::string& name,
     if (hold.rows > 0) data->samples.push_back(hold.Mean());
     hold.rows = 0;
   };
+  models::TravelSinceReversal travel;
   bool first = true;
   double last_segment = 0.0, last_fixed = 0.0;
   for (std::size_t r = 0; r < log.Rows(); ++r) {
@@ -90,12 +103,13 @@ void AppendSamples(const io::Log& log, const std::string& name,
     s.angle_rad << log.Value(r, c.q1), log.Value(r, c.q2);
     s.insertion_depth_m = log.Value(r, c.q3);
     s.effort_nm << log.Value(r, c.tau1), log.Value(r, c.tau2);
+    s.travel_since_reversal_rad = travel.Update(s.angle_rad);
     s.tip_fixed = fixed > 0.5;
     s.segment = data->segments - 1;
     s.log = int(data->logs.size()) - 1;
     if (hold.rows > 0 && (!options.average_holds ||
-                          (s.angle_rad - hold.first_angle_rad).cwiseAbs().maxCoeff() >
-                              options.hold_tolerance_rad ||
+                          MovedBeyond(s.angle_rad, hold.first_angle_rad,
+                                      options.hold_tolerance_rad) ||
                           std::abs(s.insertion_depth_m - hold.first_depth_m) > 1e-4)) {
       flush();
     }

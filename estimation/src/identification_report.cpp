@@ -23,6 +23,12 @@ double Sd(const models::ParameterCovariance& c, std::size_t i) {
 
 // The value a covariance name refers to.
 double ValueOf(const models::ModelParameters& p, const std::string& name) {
+  for (const auto& effect : p.effects) {  // "EFFECT.PARAMETER"
+    for (std::size_t k = 0; k < effect.parameter_names.size(); ++k) {
+      if (name == effect.name + "." + effect.parameter_names[k]) return effect.values[k];
+    }
+  }
+  if (name.rfind("joint", 0) != 0 || name.size() < 8) return std::nan("");
   const int j = name[5] - '1';
   const auto& joint = p.joints[j];
   const std::string field = name.substr(7);
@@ -57,10 +63,16 @@ std::array<std::vector<LawComparison>, 2> CompareLaws(const IdentificationResult
   return out;
 }
 
+static const char* MethodName(const std::string& method) {
+  if (method == "paper") return "the paper's procedure";
+  if (method == "quasi_static") return "quasi-static clamps with the held friction";
+  return "joint smoother";
+}
+
 std::string IdentificationTable(const IdentificationResult& r, const IdentificationData& data,
                                 const std::array<std::vector<LawComparison>, 2>& laws) {
   std::string out = Line("%s, %s law: %zu log(s), %zu rows -> %zu samples (%zu tip held), %.2f s",
-                         r.method == "paper" ? "the paper's procedure" : "joint smoother",
+                         MethodName(r.method),
                          models::ComplianceFormName(r.parameters.joints[0].compliance.form),
                          data.logs.size(), data.log_rows, data.samples.size(),
                          data.CountTipFixed(), r.seconds);

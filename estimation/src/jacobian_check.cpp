@@ -16,7 +16,8 @@ std::vector<T> Flatten(const JointState<T>& s) {
   return {s.encoder_angle_rad[0],  s.encoder_angle_rad[1],  s.insertion_depth_m,
           s.external_torque_nm[0], s.external_torque_nm[1], s.velocity_rad_s[0],
           s.velocity_rad_s[1],     s.time_s,                s.effort_rate_nm_s[0],
-          s.effort_rate_nm_s[1]};
+          s.effort_rate_nm_s[1],   s.travel_since_reversal_rad[0],
+          s.travel_since_reversal_rad[1]};
 }
 
 template <typename T>
@@ -28,6 +29,7 @@ JointState<T> Unflatten(const T* x) {
   s.velocity_rad_s << x[5], x[6];
   s.time_s = x[7];
   s.effort_rate_nm_s << x[8], x[9];
+  s.travel_since_reversal_rad << x[10], x[11];
   return s;
 }
 
@@ -81,7 +83,7 @@ std::string InputName(const EffectModel& effect, int column) {
 const std::vector<std::string>& JointStateInputNames() {
   static const std::vector<std::string> names = {
       "q1", "q2", "insertion_depth_m", "external_torque1", "external_torque2", "v1", "v2", "t",
-      "effort_rate1", "effort_rate2"};
+      "effort_rate1", "effort_rate2", "travel1", "travel2"};
   return names;
 }
 

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "pliant/io/log_writer.h"
+#include "pliant/models/travel_since_reversal.h"
 
 namespace pliant::estimation {
 
@@ -23,10 +24,12 @@ LogCorrectionSummary CorrectLog(const std::string& input_path, const std::string
   const io::TipReference reference = io::FindTipReference(in);
   summary.reference = reference.name;
   std::vector<double> row(header.columns.size());
+  models::TravelSinceReversal travel;  // the held-friction effect's state
   while (const double* values = reader.Next()) {
     std::copy(values, values + input_columns, row.begin());
     const Eigen::Vector3d q(values[in.q1], values[in.q2], values[in.q3]);
-    const auto result = corrector.Correct(q, Eigen::Vector2d(values[in.tau1], values[in.tau2]));
+    const auto result = corrector.Correct(q, Eigen::Vector2d(values[in.tau1], values[in.tau2]),
+                                          travel.Update(q.head<2>()));
     row[q1_corr] = result.corrected_rad[0];
     row[q2_corr] = result.corrected_rad[1];
     writer.Write(row.data());

@@ -70,7 +70,8 @@ bool PaperProcedureOptions::IsValid(std::string* error) const {
 models::BiasTorqueTable FitBiasTable(const IdentificationData& data, int joint, double step_rad) {
   std::map<long, std::array<double, 3>> bins;  // bin -> {Σ rows·q, Σ rows·tau, Σ rows}
   for (const auto& s : data.samples) {
-    if (s.tip_fixed) continue;
+    if (s.tip_fixed || !std::isfinite(s.angle_rad[joint]) || !std::isfinite(s.effort_nm[joint]))
+      continue;  // a clamped row, or a joint the log does not record
     auto& bin = bins[std::lround(s.angle_rad[joint] / step_rad)];
     bin[0] += s.rows * s.angle_rad[joint];
     bin[1] += s.rows * s.effort_nm[joint];

@@ -237,6 +237,33 @@ class Reader {
     Fail(pointer, why, std::string("correct the value") + kSeeDocs);
   }
 
+  // "effects": {"NAME": {"PARAMETER": {"value": v, "sd": s}, …}, …}
+  std::vector<models::EffectParameters> Effects(const json& effects) const {
+    if (!effects.is_object()) {
+      Fail("/effects", "effects must be an object, found " + TypeName(effects),
+           "write {\"held_friction\": {\"held_friction1\": {\"value\": 0.1, \"sd\": 0.01}, …}}");
+    }
+    std::vector<models::EffectParameters> out;
+    for (const auto& [name, parameters] : effects.items()) {
+      const std::string at = "/effects/" + name;
+      if (!parameters.is_object() || parameters.empty()) {
+        Fail(at, "effects." + name + " must be an object of its parameters",
+             "write each parameter as {\"value\": number, \"sd\": number}");
+      }
+      models::EffectParameters effect{name, {}, {}, {}};
+      for (const auto& [key, item] : parameters.items()) {
+        Object(item, at + "/" + key, {{"value", true}, {"sd", false}});
+        effect.parameter_names.push_back(key);
+        effect.values.push_back(Number(item.at("value"), at + "/" + key + "/value", "its unit"));
+        effect.sd.push_back(item.contains("sd") ? Number(item.at("sd"), at + "/" + key + "/sd",
+                                                         "its unit")
+                                                : 0.0);
+      }
+      out.push_back(std::move(effect));
+    }
+    return out;
+  }
+
  private:
   const std::string& file_;
   detail::JsonLocator locator_;
@@ -253,7 +280,8 @@ models::ModelParameters ParseParameters(const std::string& text, const std::stri
                  {"description", false},
                  {"joint1", true},
                  {"joint2", true},
-                 {"covariance", false}});
+                 {"covariance", false},
+                 {"effects", false}});
   const std::string format = reader.String(document.at("format"), "/format");
   if (format != kParametersFormat) {
     reader.Fail("/format",
@@ -275,6 +303,7 @@ models::ModelParameters ParseParameters(const std::string& text, const std::stri
   if (document.contains("covariance")) {
     parameters.covariance = reader.Covariance(document.at("covariance"));
   }
+  if (document.contains("effects")) parameters.effects = reader.Effects(document.at("effects"));
   const std::string why = models::ValidateParameters(parameters);
   if (!why.empty()) reader.FailValidation(why);
   return parameters;

@@ -83,6 +83,17 @@ nlohmann::ordered_json OrderedJson(const models::ModelParameters& parameters) {
     }
     out["covariance"] = {{"names", covariance.names}, {"matrix", matrix}};
   }
+  if (!parameters.effects.empty()) {
+    nlohmann::ordered_json effects = nlohmann::ordered_json::object();
+    for (const auto& effect : parameters.effects) {
+      nlohmann::ordered_json item = nlohmann::ordered_json::object();
+      for (std::size_t k = 0; k < effect.values.size(); ++k) {
+        item[effect.parameter_names[k]] = {{"value", effect.values[k]}, {"sd", effect.sd[k]}};
+      }
+      effects[effect.name] = item;
+    }
+    out["effects"] = effects;
+  }
   return out;
 }
 

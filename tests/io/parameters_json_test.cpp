@@ -187,7 +187,7 @@ TEST(ParametersJson, UnknownKeysAreNamedWithTheAllowedOnes) {
   const std::string top = PaperWith("\"version\": 1,", "\"version\": 1,\n  \"Joint1\": {},");
   EXPECT_EQ(ErrorOf(top),
             "p.json:4:3: unknown key 'Joint1' in the top-level object; allowed "
-            "keys: format, version, description, joint1, joint2, covariance \u2014 "
+            "keys: format, version, description, joint1, joint2, covariance, effects \u2014 "
             "remove the key or correct its spelling");
 }
 

@@ -12,6 +12,12 @@
 // width (by default the paper's tau_min). Equation (2) jumps by
 // δ + K(L)·tau_min as |tau_ext| crosses tau_min; the dead-zone form is
 // continuous in tau_ext (docs/correction.md). L is clamped to the valid range.
+//
+// Effects the parameters file carries beyond the paper's ("effects",
+// extra_effects.h) are applied too: internal torques leave the effort before
+// tau_ext is read, deflections join K(L)·tau_ext. An effect that reads the
+// travel since the last reversal (held_friction) needs the row history:
+// pass it from a models::TravelSinceReversal fed with every row.
 
 #include <optional>
 #include <string_view>
@@ -22,6 +28,7 @@
 #include "pliant/models/effects/backlash.h"
 #include "pliant/models/effects/bias_torque.h"
 #include "pliant/models/effects/bias_torque_fourier.h"
+#include "pliant/estimation/extra_effects.h"
 #include "pliant/models/effects/compliance.h"
 #include "pliant/models/parameters.h"
 
@@ -49,8 +56,16 @@ class ComplianceCorrector {
   ComplianceCorrector(const models::ModelParameters& parameters, CorrectionModel model);
 
   /// q = (q1 rad, q2 rad, q3 m); measured_torque_nm = (tau1, tau2).
-  JointCorrection Correct(const Eigen::Vector3d& q,
-                          const Eigen::Vector2d& measured_torque_nm) const;
+  /// travel_since_reversal_rad: models::TravelSinceReversal's output for
+  /// this row (zero when no effect of the file reads it).
+  JointCorrection Correct(const Eigen::Vector3d& q, const Eigen::Vector2d& measured_torque_nm,
+                          const Eigen::Vector2d& travel_since_reversal_rad =
+                              Eigen::Vector2d::Zero()) const;
+
+  const ExtraEffects& extra_effects() const { return extra_; }
+
+  /// A tare (unloaded_rows.h): N·m added to each joint's tau0.
+  void SetBiasOffset(const Eigen::Vector2d& offset_nm) { bias_offset_nm_ = offset_nm; }
 
   /// Size of equation (2)'s jump at |tau_ext| = tau_min for joint j (0 or 1), at
   /// depth L: δ + K(L)·tau_min (rad). Zero for the dead-zone model.
@@ -64,6 +79,8 @@ class ComplianceCorrector {
   models::ComplianceEffect compliance_;
   models::BacklashSignEffect backlash_sign_;
   models::BacklashDeadZoneEffect backlash_deadzone_;
+  ExtraEffects extra_;
+  Eigen::Vector2d bias_offset_nm_ = Eigen::Vector2d::Zero();
   std::vector<double> bias_values_, fourier_values_, compliance_values_, sign_values_, deadzone_values_;
 };
 

@@ -23,6 +23,9 @@ struct IdentificationSample {
   int segment = 0;         ///< 0, 1, … over all logs: a run of rows with one tip state
   int rows = 1;            ///< log rows averaged into this sample
   int log = 0;             ///< which log (0, 1, …): each log is its own clamp
+  /// Signed encoder travel since each joint last reversed (rad), over the
+  /// log's rows so far (models::TravelSinceReversal): the held-friction state.
+  Eigen::Vector2d travel_since_reversal_rad = Eigen::Vector2d::Zero();
 };
 
 struct SampleExtractionOptions {

@@ -85,6 +85,9 @@ struct JointState {
   Vec2<T> velocity_rad_s = Vec2<T>::Zero();      ///< v1, v2
   T time_s = T(0.0);                             ///< log time, s
   Vec2<T> effort_rate_nm_s = Vec2<T>::Zero();    ///< d tau_meas / dt (the effort-delay effect)
+  /// Signed encoder travel since the joint last reversed (rad; the held-friction
+  /// effect): models::TravelSinceReversal computes it from the rows so far.
+  Vec2<T> travel_since_reversal_rad = Vec2<T>::Zero();
 
   /// The same state in another scalar type (e.g. double -> ceres::Jet).
   template <typename U>
@@ -96,13 +99,14 @@ struct JointState {
     out.velocity_rad_s = velocity_rad_s.template cast<U>();
     out.time_s = U(time_s);
     out.effort_rate_nm_s = effort_rate_nm_s.template cast<U>();
+    out.travel_since_reversal_rad = travel_since_reversal_rad.template cast<U>();
     return out;
   }
 };
 
 /// Number of scalar inputs in a JointState, in the order
-/// q1, q2, q3, tau_ext1, tau_ext2, v1, v2, t, tau_rate1, tau_rate2 (used by
-/// the Jacobian check).
-inline constexpr int kJointStateSize = 10;
+/// q1, q2, q3, tau_ext1, tau_ext2, v1, v2, t, tau_rate1, tau_rate2, travel1,
+/// travel2 (used by the Jacobian check).
+inline constexpr int kJointStateSize = 12;
 
 }  // namespace pliant::models

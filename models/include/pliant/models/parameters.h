@@ -85,10 +85,21 @@ struct ParameterCovariance {
   Eigen::MatrixXd matrix;
 };
 
+/// One catalogue effect the parameters carry beyond the paper's model (e.g.
+/// "held_friction"), with every parameter of the effect, in the effect's
+/// order (estimation::ExtraEffects checks them against the catalogue).
+struct EffectParameters {
+  std::string name;
+  std::vector<std::string> parameter_names;
+  std::vector<double> values;
+  std::vector<double> sd;  ///< 0 for a parameter held at its value
+};
+
 struct ModelParameters {
   std::string description;
   std::array<JointParameters, 2> joints;  ///< [0] joint 1 (yaw), [1] joint 2 (pitch)
   std::optional<ParameterCovariance> covariance;
+  std::vector<EffectParameters> effects;  ///< applied by correct and the filter alike
 };
 
 /// Compliance K (rad/(N·m)) of a law at depth L (m), no clamping.

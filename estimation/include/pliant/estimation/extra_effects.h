@@ -1,0 +1,50 @@
+#pragma once
+// The catalogue effects a parameters file carries beyond the paper's model
+// ("effects" in docs/parameters.md), evaluated for any consumer: pliant
+// correct, the filter, the smoother. One object per parameters file; the
+// consumer fills a models::JointState per row (with travel_since_reversal_rad
+// from a models::TravelSinceReversal when an effect reads it) and asks for
+// the sum of the internal torques (subtract them from the measured effort
+// before reading the external torque) and of the deflections (subtract them
+// from the encoder angle, as the compliance).
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "pliant/estimation/effect_catalogue.h"
+#include "pliant/models/parameters.h"
+
+namespace pliant::estimation {
+
+class ExtraEffects {
+ public:
+  ExtraEffects() = default;
+  /// Throws std::invalid_argument when an effect is not in the catalogue or
+  /// its parameters are not exactly the catalogue's (the message lists them).
+  explicit ExtraEffects(const std::vector<models::EffectParameters>& effects);
+  ExtraEffects(const ExtraEffects& other);
+  ExtraEffects& operator=(const ExtraEffects& other);
+
+  bool empty() const { return models_.empty(); }
+  std::vector<std::string> Names() const;
+
+  /// N·m per joint: the part of the measured effort that is not external load.
+  Eigen::Vector2d InternalTorque(const models::JointState<double>& state) const;
+  /// rad per joint: added to the encoder angle beyond the tip (state must
+  /// carry the external torque).
+  Eigen::Vector2d Deflection(const models::JointState<double>& state) const;
+
+  /// Each effect with its parameter values, in the catalogue's order (for
+  /// consumers that evaluate them with Jets, such as the filter).
+  const std::vector<std::unique_ptr<EffectModel>>& models() const { return models_; }
+  const std::vector<std::vector<double>>& values() const { return values_; }
+
+ private:
+  std::vector<std::unique_ptr<EffectModel>> models_;
+  std::vector<std::vector<double>> values_;
+};
+
+}  // namespace pliant::estimation
