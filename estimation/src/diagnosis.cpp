@@ -315,6 +315,8 @@ Diagnosis Diagnose(const io::Log& log, const std::string& log_path,
 
   std::vector<diagnosis::CandidateFit> candidates;
   for (const auto& name : names) {
+    const auto& a = options.added_effects;
+    if (std::find(a.begin(), a.end(), name) != a.end()) continue;  // already in the model
     const Term candidate = MakeTerm(name);
     if (candidate.parameters.empty()) continue;  // nothing to fit: no size, no test
     auto c =
