@@ -75,45 +75,6 @@ std::string ChooseReference(const io::Log& log, const io::StandardColumns& c,
   return wanted;
 }
 
-// Velocity from the log, or by central differences of the encoder.
-std::vector<double> Velocity(const io::Log& log, const io::StandardColumns& c, int joint) {
-  const int column = joint == 0 ? c.v1 : c.v2;
-  if (column >= 0) return log.Column(log.header.columns[column]);
-  const int q = joint == 0 ? c.q1 : c.q2;
-  const std::size_t n = log.Rows();
-  std::vector<double> v(n, 0.0);
-  for (std::size_t r = 1; r + 1 < n; ++r) {
-    const double dt = log.Value(r + 1, c.t) - log.Value(r - 1, c.t);
-    if (dt > 0.0) v[r] = (log.Value(r + 1, q) - log.Value(r - 1, q)) / dt;
-  }
-  return v;
-}
-
-// Rate of the measured effort (N·m/s) by a least-squares line through the
-// samples within ±window/2: a plain difference would turn the effort noise
-// into a rate noise far larger than the rate.
-std::vector<double> EffortRate(const io::Log& log, const io::StandardColumns& c, int joint,
-                               double window_s) {
-  const int tau = joint == 0 ? c.tau1 : c.tau2;
-  const std::size_t n = log.Rows();
-  std::vector<double> rate(n, 0.0);
-  std::size_t lo = 0, hi = 0;
-  for (std::size_t r = 0; r < n; ++r) {
-    const double t = log.Value(r, c.t);
-    while (log.Value(lo, c.t) < t - 0.5 * window_s) ++lo;
-    while (hi + 1 < n && log.Value(hi + 1, c.t) <= t + 0.5 * window_s) ++hi;
-    double st = 0.0, sy = 0.0, stt = 0.0, sty = 0.0, m = 0.0;
-    for (std::size_t k = lo; k <= hi; ++k) {
-      const double dt = log.Value(k, c.t) - t, y = log.Value(k, tau);
-      if (!std::isfinite(y)) continue;
-      st += dt, sy += y, stt += dt * dt, sty += dt * y, m += 1.0;
-    }
-    const double denominator = m * stt - st * st;
-    if (m >= 3.0 && denominator > 0.0) rate[r] = (m * sty - st * sy) / denominator;
-  }
-  return rate;
-}
-
 }  // namespace
 
 BaseModel::BaseModel(const models::ModelParameters& parameters)
@@ -136,8 +97,8 @@ namespace {
 // Which joints the log records: a joint whose angle or effort column holds no
 // value in any row was not recorded (docs/log-format.md, one-joint logs).
 void FindRecordedJoints(const io::Log& log, const io::StandardColumns& c, bool recorded[2]) {
-  recorded[0] = HasValues(log, c.q1) && HasValues(log, c.tau1);
-  recorded[1] = HasValues(log, c.q2) && HasValues(log, c.tau2);
+  recorded[0] = log.header.JointRecorded(1) && HasValues(log, c.q1) && HasValues(log, c.tau1);
+  recorded[1] = log.header.JointRecorded(2) && HasValues(log, c.q2) && HasValues(log, c.tau2);
 }
 
 struct RowInputs {
@@ -247,10 +208,18 @@ Problem BuildProblem(const io::Log& log, const std::string& log_path, const Base
   RowInputs in;
   in.ref[0] = problem.reference == "q*_ref" ? c.q1_ref : c.q1_true;
   in.ref[1] = problem.reference == "q*_ref" ? c.q2_ref : c.q2_true;
+  // A quasi-static log's t is a pose index: no velocity or effort rate is read from it.
+  const bool quasi_static = log.header.QuasiStatic();
   for (int j = 0; j < 2; ++j) {
     if (!problem.joint_recorded[j]) continue;
-    in.v[j] = Velocity(log, c, j);
-    in.effort_rate[j] = EffortRate(log, c, j, options.effort_rate_window_s);
+    in.v[j] = quasi_static ? std::vector<double>(log.Rows(), 0.0) : Velocity(log, c, j);
+    in.effort_rate[j] = quasi_static ? std::vector<double>(log.Rows(), 0.0)
+                                     : EffortRate(log, c, j, options.effort_rate_window_s);
+  }
+  if (quasi_static) {
+    problem.notes.push_back("the log holds quasi-static means (# timing: quasi-static): no "
+                            "velocity or effort rate is read from its t, so friction and an "
+                            "effort delay cannot be identified from it, nor a drift in time");
   }
 
   // Rows loaded beyond the clearance; when the log pushes no joint that far,

@@ -123,6 +123,14 @@ std::vector<Eigen::Vector2d> Residuals(const Problem& problem, const BaseModel& 
 void ProfileGroups(const Problem& problem, std::vector<Eigen::Vector2d>& residual,
                    const std::vector<bool>* only = nullptr);
 
+/// Joint velocity (rad/s) from the log's v column, or by central differences
+/// of the encoder; joint 0 or 1.
+std::vector<double> Velocity(const io::Log& log, const io::StandardColumns& c, int joint);
+/// Rate of the measured effort (N·m/s): the slope of a least-squares line
+/// through the samples within ±window/2.
+std::vector<double> EffortRate(const io::Log& log, const io::StandardColumns& c, int joint,
+                               double window_s);
+
 /// Builds the problem from a log. Throws io::InputError when there is no
 /// reference (no tip_fixed rows, no q*_ref / q*_true columns).
 Problem BuildProblem(const io::Log& log, const std::string& log_path, const BaseModel& model,

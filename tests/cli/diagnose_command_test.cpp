@@ -110,6 +110,30 @@ nlohmann::ordered_json Summary(const CommandResult& r) {
   }
 }
 
+// The real clamped beam of joint 1 (JHU 2017): one joint recorded, quasi-static
+// means. It used to exit 1 on gnuplot's "all points y value undefined"
+// (joint 2's residual is all missing); now joint 1 is diagnosed and the
+// summary says what the log cannot tell.
+TEST(DiagnoseCommand, ARealOneJointQuasiStaticLogIsDiagnosedOnItsJoint) {
+  const auto dir = FreshDirectory("diagnose_real_one_joint");
+  const auto r = RunIn(dir, kCli + " diagnose --json --params " + kParams + " " + kSource +
+                                "/data/real/jhu2017_clamped_j1.csv --candidate deflection_coupling"
+                                " --candidate load_dependent_compliance -o report");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err.find("warning: the report's picture"), std::string::npos) << r.err;
+  const auto j = Summary(r);
+  EXPECT_EQ(j["joints_recorded"], (nlohmann::ordered_json{true, false}));
+  bool joint_note = false, timing_note = false;
+  for (const auto& note : j["notes"]) {
+    joint_note = joint_note || note.get<std::string>().find("joint 2 is not recorded") == 0;
+    timing_note = timing_note || note.get<std::string>().find("quasi-static") != std::string::npos;
+  }
+  EXPECT_TRUE(joint_note) << j["notes"];
+  EXPECT_TRUE(timing_note) << j["notes"];
+  EXPECT_EQ(j["before"]["rms_rad"][1].get<double>(), 0.0);
+  EXPECT_GT(j["before"]["rms_rad"][0].get<double>(), 0.0);
+}
+
 bool Names(const nlohmann::ordered_json& list, const std::string& name) {
   for (const auto& item : list) {
     if (item["name"] == name) return true;

@@ -46,7 +46,7 @@ struct DiagnoseOptions {
   std::size_t max_samples = 6000;
   /// An effect is called missing only if it also cuts the held-out RMS by
   /// at least this fraction.
-  double min_heldout_reduction = 0.2;
+  double min_heldout_reduction = 0.15;
   /// Two material candidates are told apart when one cuts the held-out RMS
   /// left by the other by at least this fraction; below it both ways they
   /// explain the same residual and the diagnosis says it cannot tell.
