@@ -54,21 +54,40 @@ void PrintHuman(const estimation::Diagnosis& d, const std::string& html) {
     for (const auto& n : d.added_effects) names += (names.empty() ? "" : " + ") + n;
     std::printf(" (with %s)", names.c_str());
   }
-  std::printf("\n  missing effect: %s\n", d.missing_effect ? d.missing_effect->c_str() : "none");
+  std::printf("\n  with the model's compliance scale and clearance refitted: %.3f mm (what each "
+              "candidate is scored against)\n",
+              d.rms_recalibrated_mm);
+  std::printf("  missing effect: %s\n", d.missing_effect ? d.missing_effect->c_str() : "none");
+  for (const auto& note : d.notes) std::printf("  note: %s\n", note.c_str());
+  for (const auto& e : d.added) {
+    std::printf("  added %s, fitted:", e.name.c_str());
+    for (std::size_t i = 0; i < e.parameters.size() && i < e.parameter_names.size(); ++i)
+      std::printf(" %s = %.4g ± %.2g", e.parameter_names[i].c_str(), e.parameters[i],
+                  i < e.parameter_sd.size() ? e.parameter_sd[i] : 0.0);
+    std::printf("\n");
+  }
   std::printf("  candidate effects, best first:\n");
   for (std::size_t i = 0; i < d.effects.size(); ++i) {
     const auto& e = d.effects[i];
     char p[32];
     std::snprintf(p, sizeof p, e.p_value > 0.0 ? "%.2g" : "< 1e-300", e.p_value);
-    std::printf("    %zu. %-26s removes %5.1f %% of the error  p %-8s  size %.3g ± %.2g %s%s\n",
-                i + 1, e.name.c_str(), 100.0 * e.score, p, e.size, e.size_sd, e.size_unit.c_str(),
-                e.missing ? "  <- missing" : "");
+    std::printf("    %zu. %-26s removes %5.1f %% (%5.1f %% given its rival)  p %-8s  size %.3g ± "
+                "%.2g %s%s\n",
+                i + 1, e.name.c_str(), 100.0 * e.score, 100.0 * e.unique_score, p, e.size,
+                e.size_sd, e.size_unit.c_str(), e.missing ? "  <- missing" : "");
+    if (!e.indistinguishable_from.empty()) {
+      std::string others;
+      for (const auto& o : e.indistinguishable_from) others += (others.empty() ? "" : ", ") + o;
+      std::printf("       cannot tell it from %s on this log; to separate them: %s\n",
+                  others.c_str(), e.separating_experiment.c_str());
+    }
   }
   std::printf("  channels that explain the residual, best first:\n");
   for (std::size_t i = 0; i < d.channels.size() && i < 3; ++i) {
     const auto& c = d.channels[i];
-    std::printf("    %zu. %-10s joint %d, lag %3d samples: %4.1f %% of the variance\n", i + 1,
-                c.name.c_str(), c.joint, c.lag, 100.0 * c.score);
+    std::printf("    %zu. %-10s joint %d, lag %3d samples: %4.1f %% of the variance%s%s\n", i + 1,
+                c.name.c_str(), c.joint, c.lag, 100.0 * c.score, c.remark.empty() ? "" : " — ",
+                c.remark.c_str());
   }
   std::printf("  report: %s\n", html.c_str());
 }
@@ -76,6 +95,7 @@ void PrintHuman(const estimation::Diagnosis& d, const std::string& html) {
 void RunDiagnose(DiagnoseCommandOptions o) {
   CheckEffectNames(o.diagnose.added_effects, "--add");
   CheckEffectNames(o.diagnose.candidates, "--candidate");
+  estimation::CheckEffectOptions(o.diagnose, o.log_path);
   if (o.report_dir.empty()) {
     const bool piped = o.log_path == io::kStandardStream;
     o.report_dir =
@@ -94,10 +114,18 @@ void RunDiagnose(DiagnoseCommandOptions o) {
   const auto files =
       experiments::WriteDiagnosisReport(o.report_dir, log, diagnosis, {o.log_path, o.params_path});
   progress.reset();  // the line is erased before the summary
-  if (!o.json) return PrintHuman(diagnosis, files.html);
-  auto summary = experiments::DiagnosisSummaryJson(diagnosis);
-  summary["report"] = files.html;
-  std::cout << summary.dump(2) << std::endl;
+  if (!o.json) {
+    PrintHuman(diagnosis, files.html);
+  } else {
+    auto summary = experiments::DiagnosisSummaryJson(diagnosis);
+    summary["report"] = files.html;
+    std::cout << summary.dump(2) << std::endl;
+  }
+  // A picture that could not be drawn is a warning: the diagnosis stands.
+  for (const auto& missing : files.missing_figures) {
+    std::fprintf(stderr, "warning: the report's picture %s — the report says it is missing\n",
+                 missing.c_str());
+  }
 }
 
 }  // namespace

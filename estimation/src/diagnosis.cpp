@@ -46,34 +46,6 @@ double SumOfSquares(const std::vector<double>& x) {
   return s;
 }
 
-// Held-out residual: each fold's samples under parameters fitted on the
-// others (none fitted: the model as it is, profiled the same way, so that
-// before and after are compared alike).
-Residual CrossValidated(const Problem& problem, const diagnosis::BaseModel& model,
-                        const std::vector<Term>& fixed, const std::vector<Term>& fitted) {
-  Residual heldout(problem.samples.size(), Eigen::Vector2d::Zero());
-  for (int fold = 0; fold < problem.folds; ++fold) {
-    std::vector<bool> train(problem.groups);
-    for (int g = 0; g < problem.groups; ++g) train[g] = problem.fold_of_group[g] != fold;
-    std::vector<Term> terms = fixed;
-    if (!fitted.empty()) {
-      const auto fit = diagnosis::FitTerms(problem, model, fixed, fitted, train, false, 1.0);
-      for (std::size_t t = 0; t < fitted.size(); ++t) {
-        terms.push_back(fitted[t]);
-        terms.back().parameters = fit.parameters[t];
-      }
-    }
-    std::vector<bool> test(problem.groups);
-    for (int g = 0; g < problem.groups; ++g) test[g] = !train[g];
-    // The held-out tip angle is profiled on the held-out samples alone.
-    const Residual r = diagnosis::Residuals(problem, model, terms, &test);
-    for (std::size_t i = 0; i < r.size(); ++i) {
-      if (problem.fold_of_group[problem.samples[i].group] == fold) heldout[i] = r[i];
-    }
-  }
-  return heldout;
-}
-
 ResidualStatistics Statistics(const Problem& problem, const Residual& r, const DiagnoseOptions& o) {
   ResidualStatistics s;
   s.samples = r.size();
@@ -112,24 +84,39 @@ void AddFilterNis(const io::Log& log, const models::ModelParameters& parameters,
   s.nis_band[0] = band[0], s.nis_band[1] = band[1];
 }
 
-EffectFinding Evaluate(const Problem& problem, const diagnosis::BaseModel& model,
-                       const std::vector<Term>& fixed, const Term& candidate,
-                       const Residual& before, double rms_before_mm) {
+// A candidate alone as an extension of the model: held-out reduction, the
+// segment-block test of its held-out gain, and the fit on every row.
+diagnosis::CandidateFit Evaluate(const Problem& problem, const diagnosis::BaseModel& model,
+                                 const std::vector<Term>& fixed, const Term& candidate,
+                                 const Residual& before, const Residual& heldout_before,
+                                 double rms_before_mm) {
+  // `before`: the residual of the baseline (the fixed terms and the refit
+  // alone, fitted on every row), which the size is measured from.
   EffectFinding f;
   f.name = candidate.name;
   f.description = std::string(candidate.effect->Info().explanation);
   f.size_unit = "mm";
-  const Residual heldout = CrossValidated(problem, model, fixed, {candidate});
+  const Residual heldout =
+      diagnosis::CrossValidated(problem, model, fixed, diagnosis::WithRefit(problem, {candidate}));
   f.heldout_rms_before_mm = rms_before_mm;
   f.heldout_rms_after_mm = diagnosis::TipRmsMm(problem, heldout);
   f.score = rms_before_mm > 0.0 ? 1.0 - f.heldout_rms_after_mm / rms_before_mm : 0.0;
+  // Rows within a segment are correlated; the held-out segments are the sample.
+  f.p_value = diagnosis::BlockImprovementTest(
+                  diagnosis::GainPerGroup(problem, heldout_before, heldout))
+                  .p_value;
 
-  // In-sample fit for the test, the information criteria and the size.
+  // In-sample fit for the information criteria, the parameters and the size.
   const std::vector<bool> all(problem.groups, true);
+  const auto fit = diagnosis::FitTerms(problem, model, fixed,
+                                       diagnosis::WithRefit(problem, {candidate}), all, true, 1.0);
+  std::vector<Term> with = fixed;  // the fixed terms and the refit as fitted with it
+  std::vector<Term> refit = problem.refit;
+  for (std::size_t t = 0; t < refit.size(); ++t) refit[t].parameters = fit.parameters[t];
+  with.insert(with.end(), refit.begin(), refit.end());
+  const std::vector<Term> base = with;
   Term fitted = candidate;
-  const auto fit = diagnosis::FitTerms(problem, model, fixed, {candidate}, all, true, 1.0);
-  fitted.parameters = fit.parameters[0];
-  std::vector<Term> with = fixed;
+  fitted.parameters = fit.parameters.back();
   with.push_back(fitted);
   const Standardised z0 = Standardise(problem, before);
   const Standardised z1 = Standardise(problem, diagnosis::Residuals(problem, model, with));
@@ -142,16 +129,21 @@ EffectFinding Evaluate(const Problem& problem, const diagnosis::BaseModel& model
   const double log_ratio = std::log(rss1 / std::max(rss0, 1e-300));
   f.delta_aic = n_eff * log_ratio + 2.0 * k;
   f.delta_bic = n_eff * log_ratio + k * std::log(n_eff);
-  const double d2 = std::max(1.0, n_eff - k);
-  f.p_value = diagnosis::FUpperTail((rss0 - rss1) / k / (rss1 / d2), k, d2);
 
   f.parameters = fitted.parameters;
-  for (double sd : fit.parameter_sd[0]) f.parameter_sd.push_back(sd / std::sqrt(factor));
+  for (double sd : fit.parameter_sd.back()) f.parameter_sd.push_back(sd / std::sqrt(factor));
   for (const auto& spec : candidate.effect->Parameters()) f.parameter_names.push_back(spec.name);
-  const auto size =
-      diagnosis::ContributionSizeMm(problem, model, fixed, fitted, fit.covariance / factor);
-  f.size = size[0], f.size_sd = size[1];
-  return f;
+  const Eigen::Index m = Eigen::Index(candidate.parameters.size());
+  const Eigen::MatrixXd covariance =
+      fit.covariance.rows() >= m
+          ? Eigen::MatrixXd(fit.covariance.bottomRightCorner(m, m) / factor)
+          : Eigen::MatrixXd::Zero(m, m);
+  // Size: what the candidate (with the refit as fitted with it) changes in the
+  // baseline's residual; its σ from the candidate's own parameters.
+  const auto size = diagnosis::ContributionSizeMm(problem, model, base, fitted, covariance);
+  f.size = diagnosis::RmsDifferenceMm(problem, before, diagnosis::Residuals(problem, model, with));
+  f.size_sd = size[0] > 0.0 ? size[1] : 0.0;
+  return {f, fitted, refit};
 }
 
 // The log channels an effect reads: the inputs of the joint state its
@@ -187,6 +179,47 @@ std::vector<std::string> ChannelsOf(const EffectModel& effect) {
   return channels;
 }
 
+// The --add effects fitted jointly on every compared row, with their sd;
+// `fixed` receives them at the fitted values.
+std::vector<EffectFinding> FitAdded(const Problem& problem, const diagnosis::BaseModel& model,
+                                    const std::vector<Term>& added, std::vector<Term>& fixed) {
+  const std::vector<bool> all(problem.groups, true);
+  const auto fit = diagnosis::FitTerms(problem, model, {}, diagnosis::WithRefit(problem, added),
+                                       all, true, 1.0);
+  const std::size_t first = problem.refit.size();
+  fixed = added;
+  std::vector<EffectFinding> out;
+  for (std::size_t t = 0; t < added.size(); ++t) {
+    fixed[t].parameters = fit.parameters[first + t];
+    EffectFinding f;
+    f.name = added[t].name;
+    f.description = std::string(added[t].effect->Info().explanation);
+    f.channels = ChannelsOf(*added[t].effect);
+    f.parameters = fixed[t].parameters;
+    f.parameter_sd = fit.parameter_sd.size() > first + t
+                         ? fit.parameter_sd[first + t]
+                         : std::vector<double>(f.parameters.size(), 0.0);
+    for (const auto& spec : added[t].effect->Parameters()) f.parameter_names.push_back(spec.name);
+    f.size_unit = "mm";
+    out.push_back(std::move(f));
+  }
+  return out;
+}
+
+// A caution for a channel whose lag or nature can mislead a reader.
+std::string ChannelRemark(const ChannelFinding& c, int max_lag) {
+  if (c.name == "t")
+    return "the log's time: a slow drift of the residual, or any effect that changes over the "
+           "session; not a cause by itself";
+  if (c.name == "segment")
+    return "the segment number: the residual differs between segments (depth, direction, load), "
+           "not along this number";
+  if (max_lag > 0 && std::abs(c.lag) >= max_lag)
+    return "the best lag is at the edge of the ±" + std::to_string(max_lag) +
+           " sample window: the true lag may be longer (try a larger --max-lag)";
+  return "";
+}
+
 }  // namespace
 
 std::vector<std::string> CandidateEffectNames() {
@@ -200,87 +233,135 @@ std::vector<std::string> CandidateEffectNames() {
   return names;
 }
 
-Diagnosis Diagnose(const io::Log& log, const std::string& log_path,
-                   const models::ModelParameters& parameters, const DiagnoseOptions& options) {
-  const std::string why = models::ValidateParameters(parameters);
-  if (!why.empty()) {
-    throw io::InputError("parameters", 0, 0, why, "give parameters that pass `pliant check`");
-  }
+// Unknown names, an effect added twice, or added and a candidate at once.
+void CheckEffectOptions(const DiagnoseOptions& options, const std::string& log_path) {
   auto known = [&](const std::string& name) {
     if (EffectCatalogue::Global().Contains(name)) return;
     std::string list;
     for (const auto& n : CandidateEffectNames()) list += (list.empty() ? "" : ", ") + n;
     throw io::InputError(log_path, 0, 0, "no effect named '" + name + "'", "use one of: " + list);
   };
+  std::set<std::string> seen;
+  for (const auto& name : options.added_effects) {
+    known(name);
+    if (!seen.insert(name).second) {
+      throw io::InputError("--add", 0, 0, "effect '" + name + "' is given twice",
+                           "give each effect once: it is fitted once");
+    }
+  }
+  std::set<std::string> candidates;
+  for (const auto& name : options.candidates) {
+    known(name);
+    if (seen.count(name)) {
+      throw io::InputError("--candidate", 0, 0,
+                           "effect '" + name + "' is both added (--add) and a candidate",
+                           "an added effect is part of the model; drop it from --candidate");
+    }
+    if (!candidates.insert(name).second) {
+      throw io::InputError("--candidate", 0, 0, "effect '" + name + "' is given twice",
+                           "give each candidate once");
+    }
+  }
+}
+
+Diagnosis Diagnose(const io::Log& log, const std::string& log_path,
+                   const models::ModelParameters& parameters, const DiagnoseOptions& options) {
+  const std::string why = models::ValidateParameters(parameters);
+  if (!why.empty()) {
+    throw io::InputError("parameters", 0, 0, why, "give parameters that pass `pliant check`");
+  }
+  CheckEffectOptions(options, log_path);
   std::vector<Term> added;
-  for (const auto& name : options.added_effects) known(name), added.push_back(MakeTerm(name));
+  for (const auto& name : options.added_effects) added.push_back(MakeTerm(name));
   std::vector<std::string> names = options.candidates.empty() ? CandidateEffectNames() : options.candidates;
-  for (const auto& name : names) known(name);
 
   const diagnosis::BaseModel model(parameters);
-  const Problem problem = diagnosis::BuildProblem(log, log_path, model, added, options);
+  Problem problem = diagnosis::BuildProblem(log, log_path, model, added, options);
+  if (options.recalibrate_base) problem.refit = {diagnosis::BaseRecalibrationTerm(model)};
   const std::vector<bool> all(problem.groups, true);
   Diagnosis d;
   d.reference = problem.reference;
   d.added_effects = options.added_effects;
+  d.notes = problem.notes;
+  d.joint_recorded[0] = problem.joint_recorded[0], d.joint_recorded[1] = problem.joint_recorded[1];
+  d.max_lag_samples = options.max_lag_samples;
 
   const Residual before = diagnosis::Residuals(problem, model, {});
-  d.rms_before_mm = diagnosis::TipRmsMm(problem, CrossValidated(problem, model, {}, {}));
+  const Residual heldout_before = diagnosis::CrossValidated(problem, model, {}, {});
+  d.rms_before_mm = diagnosis::TipRmsMm(problem, heldout_before);
   std::vector<Term> fixed;
   Residual after = before;
+  Residual heldout_baseline;
   if (!added.empty()) {
-    const auto fit = diagnosis::FitTerms(problem, model, {}, added, all, false, 1.0);
-    fixed = added;
-    for (std::size_t t = 0; t < added.size(); ++t) fixed[t].parameters = fit.parameters[t];
-    d.rms_after_mm = diagnosis::TipRmsMm(problem, CrossValidated(problem, model, {}, added));
+    d.added = FitAdded(problem, model, added, fixed);
+    d.rms_after_mm = diagnosis::TipRmsMm(
+        problem, diagnosis::CrossValidated(problem, model, {}, diagnosis::WithRefit(problem, added)));
     after = diagnosis::Residuals(problem, model, fixed);
   }
   const Residual baseline = fixed.empty() ? before : after;
-  const double baseline_rms =
-      fixed.empty() ? d.rms_before_mm : diagnosis::TipRmsMm(problem, CrossValidated(problem, model, fixed, {}));
+  // Candidates are tried on top of the added effects as fitted, each against
+  // the baseline of the recalibrated model.
+  heldout_baseline = diagnosis::CrossValidated(problem, model, fixed, problem.refit);
+  const double baseline_rms = diagnosis::TipRmsMm(problem, heldout_baseline);
+  d.rms_recalibrated_mm = baseline_rms;
+  Residual recalibrated = baseline;
+  if (!problem.refit.empty()) {
+    const auto fit = diagnosis::FitTerms(problem, model, fixed, problem.refit, all, false, 1.0);
+    std::vector<Term> with = fixed;
+    for (std::size_t t = 0; t < problem.refit.size(); ++t) {
+      with.push_back(problem.refit[t]);
+      with.back().parameters = fit.parameters[t];
+    }
+    recalibrated = diagnosis::Residuals(problem, model, with);
+  }
 
+  std::vector<diagnosis::CandidateFit> candidates;
   for (const auto& name : names) {
-    if (std::find(options.added_effects.begin(), options.added_effects.end(), name) !=
-        options.added_effects.end())
-      continue;
+    const auto& a = options.added_effects;
+    if (std::find(a.begin(), a.end(), name) != a.end()) continue;  // already in the model
     const Term candidate = MakeTerm(name);
     if (candidate.parameters.empty()) continue;  // nothing to fit: no size, no test
-    EffectFinding f = Evaluate(problem, model, fixed, candidate, baseline, baseline_rms);
-    f.channels = ChannelsOf(*candidate.effect);
-    d.effects.push_back(std::move(f));
+    auto c =
+        Evaluate(problem, model, fixed, candidate, recalibrated, heldout_baseline, baseline_rms);
+    c.finding.channels = ChannelsOf(*candidate.effect);
+    candidates.push_back(std::move(c));
   }
   std::vector<double> p;
-  for (const auto& f : d.effects) p.push_back(f.p_value);
+  for (const auto& c : candidates) p.push_back(c.finding.p_value);
   diagnosis::HolmAdjust(p);
   for (std::size_t i = 0; i < p.size(); ++i) {
-    EffectFinding& f = d.effects[i];
+    EffectFinding& f = candidates[i].finding;
     f.p_value = p[i];
     f.missing = f.p_value < options.family_significance && f.score >= options.min_heldout_reduction;
   }
-  std::stable_sort(d.effects.begin(), d.effects.end(),
-                   [](const EffectFinding& a, const EffectFinding& b) { return a.score > b.score; });
+  d.selected = diagnosis::RankBySeparation(problem, model, fixed, options, candidates);
+  for (const auto& c : candidates) d.effects.push_back(c.finding);
   for (const auto& f : d.effects) {
     if (f.missing) {
       d.missing_effect = f.name;
       break;
     }
   }
-  if (added.empty() && !d.effects.empty()) {
-    const EffectFinding& best = d.effects.front();
-    d.rms_after_mm = best.heldout_rms_after_mm;
-    Term term = MakeTerm(best.name);
-    term.parameters = best.parameters;
-    after = diagnosis::Residuals(problem, model, {term});
+  if (added.empty() && !candidates.empty()) {
+    d.rms_after_mm = candidates.front().finding.heldout_rms_after_mm;
+    std::vector<Term> with = candidates.front().refit;
+    with.push_back(candidates.front().term);
+    after = diagnosis::Residuals(problem, model, with);
   } else if (added.empty()) {
     d.rms_after_mm = d.rms_before_mm;
   }
 
   d.before = Statistics(problem, before, options);
   d.after = Statistics(problem, after, options);
-  AddFilterNis(log, parameters, options, problem, d.before);
+  if (problem.joint_recorded[0] && problem.joint_recorded[1]) {
+    AddFilterNis(log, parameters, options, problem, d.before);
+  } else {
+    d.notes.push_back("the filter's NIS is not computed: it needs both joints recorded");
+  }
   d.after.mean_nis = d.before.mean_nis;  // the filter has no candidate effect in it
   d.after.nis_band[0] = d.before.nis_band[0], d.after.nis_band[1] = d.before.nis_band[1];
   d.channels = diagnosis::RankChannels(log, problem, baseline, options);
+  for (auto& c : d.channels) c.remark = ChannelRemark(c, options.max_lag_samples);
 
   for (std::size_t i = 0; i < problem.samples.size(); ++i) {
     const auto& s = problem.samples[i];

@@ -224,7 +224,7 @@ std::vector<ChannelFinding> RankChannels(const io::Log& log, const Problem& prob
         if (current.eta2 < 0.0 || better) {
           current.eta2 = b.eta2;
           current.test = all_p.size() - 1;
-          current.finding = {c.name, j + 1, lag, b.eta2, p, Words(c, j + 1, lag, b, period)};
+          current.finding = {c.name, j + 1, lag, b.eta2, p, Words(c, j + 1, lag, b, period), ""};
         }
       }
     }

@@ -2,6 +2,7 @@
 // base model's residual there (docs/diagnose-method.md).
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 
 #include "diagnosis_internal.h"
@@ -10,6 +11,9 @@
 
 namespace pliant::estimation::diagnosis {
 namespace {
+
+// Fewer compared samples than this cannot be cross-validated or fitted.
+constexpr std::size_t kMinimumSamples = 20;
 
 double ClearanceLoad(const models::JointParameters& joint) {
   // The load over which the model's dead zone takes up the clearance; below a
@@ -22,71 +26,53 @@ models::BacklashDeadZoneEffect DeadZoneOf(const models::ModelParameters& p) {
                                         ClearanceLoad(p.joints[0]), ClearanceLoad(p.joints[1]));
 }
 
+// A column that exists and holds a value in at least one row.
+bool HasValues(const io::Log& log, int column) {
+  if (column < 0) return false;
+  for (std::size_t r = 0; r < log.Rows(); ++r) {
+    if (std::isfinite(log.Value(r, column))) return true;
+  }
+  return false;
+}
+
+// A reference pair is usable when it holds values for every recorded joint.
+bool HasPair(const io::Log& log, int c1, int c2, const bool recorded[2]) {
+  return (!recorded[0] || HasValues(log, c1)) && (!recorded[1] || HasValues(log, c2)) &&
+         (HasValues(log, c1) || HasValues(log, c2));
+}
+
 std::string ChooseReference(const io::Log& log, const io::StandardColumns& c,
-                            const std::string& wanted, const std::string& log_path) {
-  const bool has_ref = c.q1_ref >= 0 && c.q2_ref >= 0;
-  const bool has_true = c.q1_true >= 0 && c.q2_true >= 0;
+                            const std::string& wanted, const std::string& log_path,
+                            const bool recorded[2]) {
+  const bool has_ref = HasPair(log, c.q1_ref, c.q2_ref, recorded);
+  const bool has_true = HasPair(log, c.q1_true, c.q2_true, recorded);
   bool has_fixed = false;
   if (c.tip_fixed >= 0) {
     for (std::size_t r = 0; r < log.Rows() && !has_fixed; ++r)
       has_fixed = log.Value(r, c.tip_fixed) > 0.5;
   }
-  const std::string fix =
-      "log the tip held still (tip_fixed = 1 with a segment number) or add q1_ref, q2_ref from "
-      "a tracker";
+  const std::string fix = "log the tip held still (tip_fixed = 1 with a segment number) or fill "
+                          "q1_ref, q2_ref from a tracker";
   if (wanted == "auto") {
     if (has_ref) return "q*_ref";
     if (has_fixed) return "tip_fixed";
     if (has_true) return "q*_true";
-    throw io::InputError(log_path, 1, 0,
-                         "the log says nowhere where the tip was (no tip_fixed rows, no q1_ref/q2_ref)",
+    const bool empty_ref = c.q1_ref >= 0 || c.q2_ref >= 0;
+    throw io::InputError(log_path, 0, 0,
+                         std::string("the log says nowhere where the tip was (no tip_fixed rows, ") +
+                             (empty_ref ? "q1_ref/q2_ref columns without values)"
+                                        : "no q1_ref/q2_ref)"),
                          fix);
   }
   const bool available = (wanted == "q*_ref" && has_ref) || (wanted == "tip_fixed" && has_fixed) ||
                          (wanted == "q*_true" && has_true);
   if (!available) {
-    throw io::InputError(log_path, 1, 0, "the log has no " + wanted + " reference", fix);
+    throw io::InputError(log_path, 0, 0,
+                         "the log has no " + wanted + " reference (the columns are missing or "
+                         "hold no value)",
+                         "use --reference auto, or " + fix);
   }
   return wanted;
-}
-
-// Velocity from the log, or by central differences of the encoder.
-std::vector<double> Velocity(const io::Log& log, const io::StandardColumns& c, int joint) {
-  const int column = joint == 0 ? c.v1 : c.v2;
-  if (column >= 0) return log.Column(log.header.columns[column]);
-  const int q = joint == 0 ? c.q1 : c.q2;
-  const std::size_t n = log.Rows();
-  std::vector<double> v(n, 0.0);
-  for (std::size_t r = 1; r + 1 < n; ++r) {
-    const double dt = log.Value(r + 1, c.t) - log.Value(r - 1, c.t);
-    if (dt > 0.0) v[r] = (log.Value(r + 1, q) - log.Value(r - 1, q)) / dt;
-  }
-  return v;
-}
-
-// Rate of the measured effort (N·m/s) by a least-squares line through the
-// samples within ±window/2: a plain difference would turn the effort noise
-// into a rate noise far larger than the rate.
-std::vector<double> EffortRate(const io::Log& log, const io::StandardColumns& c, int joint,
-                               double window_s) {
-  const int tau = joint == 0 ? c.tau1 : c.tau2;
-  const std::size_t n = log.Rows();
-  std::vector<double> rate(n, 0.0);
-  std::size_t lo = 0, hi = 0;
-  for (std::size_t r = 0; r < n; ++r) {
-    const double t = log.Value(r, c.t);
-    while (log.Value(lo, c.t) < t - 0.5 * window_s) ++lo;
-    while (hi + 1 < n && log.Value(hi + 1, c.t) <= t + 0.5 * window_s) ++hi;
-    double st = 0.0, sy = 0.0, stt = 0.0, sty = 0.0, m = 0.0;
-    for (std::size_t k = lo; k <= hi; ++k) {
-      const double dt = log.Value(k, c.t) - t, y = log.Value(k, tau);
-      if (!std::isfinite(y)) continue;
-      st += dt, sy += y, stt += dt * dt, sty += dt * y, m += 1.0;
-    }
-    const double denominator = m * stt - st * st;
-    if (m >= 3.0 && denominator > 0.0) rate[r] = (m * sty - st * sy) / denominator;
-  }
-  return rate;
 }
 
 }  // namespace
@@ -106,27 +92,36 @@ BaseModel::BaseModel(const models::ModelParameters& parameters)
   }
 }
 
-Problem BuildProblem(const io::Log& log, const std::string& log_path, const BaseModel& model,
-                     const std::vector<Term>& added, const DiagnoseOptions& options) {
-  const io::StandardColumns c(log.header);
-  Problem problem;
-  problem.reference = ChooseReference(log, c, options.reference, log_path);
-  problem.profile_tip = problem.reference == "tip_fixed";
-  const int ref1 = problem.reference == "q*_ref" ? c.q1_ref : c.q1_true;
-  const int ref2 = problem.reference == "q*_ref" ? c.q2_ref : c.q2_true;
-  const std::vector<double> v[2] = {Velocity(log, c, 0), Velocity(log, c, 1)};
-  const std::vector<double> effort_rate[2] = {EffortRate(log, c, 0, options.effort_rate_window_s),
-                                              EffortRate(log, c, 1, options.effort_rate_window_s)};
+namespace {
+
+// Which joints the log records: a joint whose angle or effort column holds no
+// value in any row was not recorded (docs/log-format.md, one-joint logs).
+void FindRecordedJoints(const io::Log& log, const io::StandardColumns& c, bool recorded[2]) {
+  recorded[0] = log.header.JointRecorded(1) && HasValues(log, c.q1) && HasValues(log, c.tau1);
+  recorded[1] = log.header.JointRecorded(2) && HasValues(log, c.q2) && HasValues(log, c.tau2);
+}
+
+struct RowInputs {
+  std::vector<double> v[2];
+  std::vector<double> effort_rate[2];
+  int ref[2] = {-1, -1};
+};
+
+// The compared samples with their loads beyond `load_factor` × the clearance
+// load; `group_of_segment` and `tip_group_of_run` receive the groups seen.
+std::vector<Sample> CollectSamples(const io::Log& log, const io::StandardColumns& c,
+                                   const Problem& problem, const BaseModel& model,
+                                   const std::vector<Term>& added, const DiagnoseOptions& options,
+                                   const RowInputs& in, double load_factor,
+                                   std::map<long, int>& group_of_segment,
+                                   std::map<int, int>& tip_group_of_run) {
   const auto& joints = model.parameters().joints;
   std::vector<const double*> values;
   for (const Term& term : added) values.push_back(term.parameters.data());
-
-  // Candidate rows, with their group (segment, else run of tip_fixed rows).
+  const int q[2] = {c.q1, c.q2}, tau[2] = {c.tau1, c.tau2};
   std::vector<Sample> all;
-  std::map<long, int> group_of_segment;
   int run = -1;
   bool previous_kept = false;
-  std::map<int, int> tip_group_of_run;
   for (std::size_t r = 0; r < log.Rows(); ++r) {
     const bool fixed = c.tip_fixed >= 0 && log.Value(r, c.tip_fixed) > 0.5;
     const bool keep = problem.profile_tip ? fixed : (c.tip_fixed < 0 || fixed);
@@ -135,20 +130,27 @@ Problem BuildProblem(const io::Log& log, const std::string& log_path, const Base
     if (!keep) continue;
     Sample s;
     s.row = r;
-    s.state.encoder_angle_rad = {log.Value(r, c.q1), log.Value(r, c.q2)};
+    Eigen::Vector2d effort(0.0, 0.0);
+    // An unrecorded joint stays at rest at 0 (its prior): nothing is read from it.
+    for (int j = 0; j < 2; ++j) {
+      if (!problem.joint_recorded[j]) continue;
+      s.state.encoder_angle_rad[j] = log.Value(r, q[j]);
+      s.state.velocity_rad_s[j] = in.v[j][r];
+      s.state.effort_rate_nm_s[j] = in.effort_rate[j][r];
+      effort[j] = log.Value(r, tau[j]);
+      if (!problem.profile_tip) s.reference_rad[j] = log.Value(r, in.ref[j]);
+    }
     s.state.insertion_depth_m = log.Value(r, c.q3);
-    s.state.velocity_rad_s = {v[0][r], v[1][r]};
     s.state.time_s = log.Value(r, c.t);
-    s.state.effort_rate_nm_s = {effort_rate[0][r], effort_rate[1][r]};
-    const Eigen::Vector2d effort(log.Value(r, c.tau1), log.Value(r, c.tau2));
-    if (!problem.profile_tip) s.reference_rad = {log.Value(r, ref1), log.Value(r, ref2)};
     if (!s.state.encoder_angle_rad.allFinite() || !std::isfinite(s.state.insertion_depth_m) ||
         !effort.allFinite() || !s.reference_rad.allFinite())
       continue;
     for (int j = 0; j < 2; ++j) {
       s.state.external_torque_nm[j] =
-          effort[j] - models::BiasTorqueAt(joints[j], s.state.encoder_angle_rad[j],
-                                           s.state.insertion_depth_m);
+          problem.joint_recorded[j]
+              ? effort[j] - models::BiasTorqueAt(joints[j], s.state.encoder_angle_rad[j],
+                                                 s.state.insertion_depth_m)
+              : 0.0;
     }
     models::JointState<double> loaded = s.state;
     for (std::size_t i = 0; i < added.size(); ++i) {
@@ -156,8 +158,9 @@ Problem BuildProblem(const io::Log& log, const std::string& log_path, const Base
         loaded.external_torque_nm -= added[i].effect->Evaluate(values[i], loaded);
     }
     for (int j = 0; j < 2; ++j) {
-      s.used[j] = std::abs(loaded.external_torque_nm[j]) >
-                      options.min_load_factor * model.clearance_load_nm(j) &&
+      s.used[j] = problem.joint_recorded[j] &&
+                  std::abs(loaded.external_torque_nm[j]) >
+                      load_factor * model.clearance_load_nm(j) &&
                   std::abs(effort[j]) < options.filter.effort_limit_nm;
     }
     if (!s.used[0] && !s.used[1]) continue;
@@ -170,13 +173,88 @@ Problem BuildProblem(const io::Log& log, const std::string& log_path, const Base
     s.mm_per_rad = to_mm.diagonal();
     all.push_back(s);
   }
+  return all;
+}
+
+std::string Format(const char* format, double value) {
+  char text[64];
+  return std::string(text, std::min<int>(63, std::snprintf(text, sizeof text, format, value)));
+}
+
+}  // namespace
+
+Problem BuildProblem(const io::Log& log, const std::string& log_path, const BaseModel& model,
+                     const std::vector<Term>& added, const DiagnoseOptions& options) {
+  const io::StandardColumns c(log.header);
+  Problem problem;
+  FindRecordedJoints(log, c, problem.joint_recorded);
+  if (!problem.joint_recorded[0] && !problem.joint_recorded[1]) {
+    throw io::InputError(log_path, 0, 0,
+                         "neither joint 1 nor joint 2 is recorded (their q and tau columns hold "
+                         "no value)",
+                         "log q1, tau1 or q2, tau2");
+  }
+  for (int j = 0; j < 2; ++j) {
+    if (!problem.joint_recorded[j]) {
+      problem.notes.push_back("joint " + std::to_string(j + 1) +
+                              " is not recorded in this log: only joint " +
+                              std::to_string(2 - j) + " is diagnosed; joint " +
+                              std::to_string(j + 1) + " stays at its prior (at rest, unloaded)");
+    }
+  }
+  problem.reference =
+      ChooseReference(log, c, options.reference, log_path, problem.joint_recorded);
+  problem.profile_tip = problem.reference == "tip_fixed";
+  RowInputs in;
+  in.ref[0] = problem.reference == "q*_ref" ? c.q1_ref : c.q1_true;
+  in.ref[1] = problem.reference == "q*_ref" ? c.q2_ref : c.q2_true;
+  // A quasi-static log's t is a pose index: no velocity or effort rate is read from it.
+  const bool quasi_static = log.header.QuasiStatic();
+  for (int j = 0; j < 2; ++j) {
+    if (!problem.joint_recorded[j]) continue;
+    in.v[j] = quasi_static ? std::vector<double>(log.Rows(), 0.0) : Velocity(log, c, j);
+    in.effort_rate[j] = quasi_static ? std::vector<double>(log.Rows(), 0.0)
+                                     : EffortRate(log, c, j, options.effort_rate_window_s);
+  }
+  if (quasi_static) {
+    problem.notes.push_back("the log holds quasi-static means (# timing: quasi-static): no "
+                            "velocity or effort rate is read from its t, so friction and an "
+                            "effort delay cannot be identified from it, nor a drift in time");
+  }
+
+  // Rows loaded beyond the clearance; when the log pushes no joint that far,
+  // the rows beyond it at all, then beyond half of it, saying so.
+  std::map<long, int> group_of_segment;
+  std::map<int, int> tip_group_of_run;
+  std::vector<Sample> all;
+  double factor = options.min_load_factor;
+  for (double f : {options.min_load_factor, 1.0, 0.5}) {
+    if (f > options.min_load_factor) continue;
+    factor = f;
+    group_of_segment.clear(), tip_group_of_run.clear();
+    all = CollectSamples(log, c, problem, model, added, options, in, f, group_of_segment,
+                         tip_group_of_run);
+    if (all.size() >= kMinimumSamples) break;
+  }
   if (all.empty()) {
-    throw io::InputError(log_path, 1, 0,
-                         "no row of the log has the tip where the reference says and a load "
-                         "beyond the cannula clearance",
-                         "push the held tip to at least " +
-                             std::to_string(options.min_load_factor * model.clearance_load_nm(0)) +
-                             " N·m on a joint");
+    throw io::InputError(log_path, 0, 0,
+                         "no row of the log has the tip where the reference says and a load on "
+                         "a recorded joint beyond half the cannula clearance's load (" +
+                             Format("%.3g", 0.5 * model.clearance_load_nm(0)) + " / " +
+                             Format("%.3g", 0.5 * model.clearance_load_nm(1)) + " N·m)",
+                         "log pushes of the held tip (tip_fixed = 1) or a tracker reference "
+                         "while the joints are loaded");
+  }
+  if (factor < options.min_load_factor) {
+    problem.notes.push_back(
+        "no push in this log reaches " + Format("%.3g", options.min_load_factor) +
+        " × the load that takes up the cannula clearance (" +
+        Format("%.3g", options.min_load_factor * model.clearance_load_nm(0)) + " / " +
+        Format("%.3g", options.min_load_factor * model.clearance_load_nm(1)) +
+        " N·m on joint 1 / 2): rows beyond " + Format("%.3g", factor) +
+        " × are compared instead. There the shaft's place in the clearance still depends on "
+        "its history, so the clearance and effects of the clearance (backlash_depth) cannot "
+        "be identified from this log; to identify them, push the held tip beyond those loads");
   }
   // Thin evenly for speed (docs/diagnose-method.md: fitting on a subsample).
   const std::size_t stride =
@@ -209,6 +287,7 @@ Problem BuildProblem(const io::Log& log, const std::string& log_path, const Base
   for (const Sample& s : problem.samples) depths.push_back(s.state.insertion_depth_m);
   std::nth_element(depths.begin(), depths.begin() + depths.size() / 2, depths.end());
   const double reference_sd = problem.reference == "q*_ref" ? options.filter.reference_noise_rad : 0.0;
+  const auto& joints = model.parameters().joints;
   for (int j = 0; j < 2; ++j) {
     const double k = models::ComplianceAt(joints[j], depths[depths.size() / 2]);
     problem.noise_sd_rad[j] = std::sqrt(std::pow(k * options.filter.effort_noise_nm, 2) +

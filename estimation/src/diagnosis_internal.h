@@ -34,6 +34,13 @@ struct Sample {
   Eigen::Vector2d mm_per_rad{0.0, 0.0};    ///< tip displacement per joint error
 };
 
+/// An effect with its parameters, as part of a model.
+struct Term {
+  std::shared_ptr<const EffectModel> effect;
+  std::vector<double> parameters;
+  std::string name;
+};
+
 /// The rows, their reference and the noise scale that standardises residuals.
 struct Problem {
   std::string reference;    ///< "q*_ref", "q*_true", "tip_fixed"
@@ -45,13 +52,11 @@ struct Problem {
   double rms_window_s = 0.0;  ///< residuals averaged over this before an RMS
   int folds = 1;
   Eigen::Vector2d noise_sd_rad{1e-3, 1e-3};  ///< measurement noise of the residual
-};
-
-/// An effect with its parameters, as part of a model.
-struct Term {
-  std::shared_ptr<const EffectModel> effect;
-  std::vector<double> parameters;
-  std::string name;
+  bool joint_recorded[2] = {true, true};    ///< false: the joint stays at its prior, unused
+  /// Terms refitted with every candidate and in the baseline it is scored
+  /// against (the base model's recalibration), empty when off.
+  std::vector<Term> refit;
+  std::vector<std::string> notes;           ///< what the log cannot tell, in words
 };
 
 /// The model the diagnosis compares: the parameters' bias (already removed
@@ -118,6 +123,14 @@ std::vector<Eigen::Vector2d> Residuals(const Problem& problem, const BaseModel& 
 void ProfileGroups(const Problem& problem, std::vector<Eigen::Vector2d>& residual,
                    const std::vector<bool>* only = nullptr);
 
+/// Joint velocity (rad/s) from the log's v column, or by central differences
+/// of the encoder; joint 0 or 1.
+std::vector<double> Velocity(const io::Log& log, const io::StandardColumns& c, int joint);
+/// Rate of the measured effort (N·m/s): the slope of a least-squares line
+/// through the samples within ±window/2.
+std::vector<double> EffortRate(const io::Log& log, const io::StandardColumns& c, int joint,
+                               double window_s);
+
 /// Builds the problem from a log. Throws io::InputError when there is no
 /// reference (no tip_fixed rows, no q*_ref / q*_true columns).
 Problem BuildProblem(const io::Log& log, const std::string& log_path, const BaseModel& model,
@@ -143,6 +156,11 @@ TestResult LjungBox(const std::vector<double>& x, int lags);
 TestResult JarqueBera(const std::vector<double>& x);
 /// Upper tail of F(d1, d2) at f.
 double FUpperTail(double f, double d1, double d2);
+/// One-sided test that a mean gain is positive, the blocks (held-out
+/// segments) taken as the independent units: Student's t on the per-block
+/// gains, g − 1 degrees of freedom. Rows within a segment are correlated;
+/// segments are what the cross-validation holds out, so they are the sample.
+TestResult BlockImprovementTest(const std::vector<double>& gain_per_block);
 /// Holm's step-down adjustment, in place.
 void HolmAdjust(std::vector<double>& p_values);
 /// Two-sided 95 % band of a mean of χ²/dof over `dof` degrees of freedom.
@@ -164,11 +182,59 @@ FitResult FitTerms(const Problem& problem, const BaseModel& model, const std::ve
                    const std::vector<Term>& fitted, const std::vector<bool>& train_group,
                    bool covariance, double size_factor);
 
-/// The largest tip displacement (mm) an effect term contributes over the
-/// samples, and its standard deviation by the delta method.
+/// The base model's compliance share and clearance as a term to refit with
+/// each candidate (DiagnoseOptions::recalibrate_base); `model` must outlive it.
+Term BaseRecalibrationTerm(const BaseModel& model);
+
+/// RMS (mm at the tip) over the samples of what `term` changes in the
+/// residual of the model with `fixed` (tip angles profiled like the residual),
+/// and its standard deviation by the delta method.
 std::array<double, 2> ContributionSizeMm(const Problem& problem, const BaseModel& model,
                                          const std::vector<Term>& fixed, const Term& term,
                                          const Eigen::MatrixXd& covariance);
+
+// --- selection (diagnosis_selection.cpp) ------------------------------------------
+/// Held-out residual: each fold's samples under parameters fitted on the
+/// others (none fitted: the model as it is, profiled the same way, so that
+/// before and after are compared alike).
+std::vector<Eigen::Vector2d> CrossValidated(const Problem& problem, const BaseModel& model,
+                                            const std::vector<Term>& fixed,
+                                            const std::vector<Term>& fitted);
+/// Per CV group, the decrease of the tip-weighted sum of squares (mm²) from
+/// `before` to `after`: the blocks of BlockImprovementTest.
+std::vector<double> GainPerGroup(const Problem& problem, const std::vector<Eigen::Vector2d>& before,
+                                 const std::vector<Eigen::Vector2d>& after);
+
+/// A candidate effect with its parameters fitted on every compared row.
+struct CandidateFit {
+  EffectFinding finding;  ///< score, p_value (adjusted) and missing already set
+  Term term;
+  std::vector<Term> refit;  ///< Problem::refit as fitted with it
+};
+
+/// `problem.refit` followed by `terms`: what a fit with these terms frees.
+std::vector<Term> WithRefit(const Problem& problem, const std::vector<Term>& terms);
+/// Ranks the candidates by what each explains that the others cannot: the
+/// material ones (missing by score and p) are fitted in pairs, cross-validated,
+/// and each is scored by its smallest held-out gain when added to another
+/// (EffectFinding::unique_score); those that add little both ways are marked
+/// indistinguishable, with the experiment that would separate them. Sorts
+/// `candidates` best first and returns the effects selected (unique gain at
+/// least options.min_unique_reduction), best first.
+std::vector<std::string> RankBySeparation(const Problem& problem, const BaseModel& model,
+                                          const std::vector<Term>& fixed,
+                                          const DiagnoseOptions& options,
+                                          std::vector<CandidateFit>& candidates);
+
+/// RMS at the tip (mm) over each joint's used samples of a − b, per sample
+/// (no windows): the size of what a fit changes in the residual.
+double RmsDifferenceMm(const Problem& problem, const std::vector<Eigen::Vector2d>& a,
+                       const std::vector<Eigen::Vector2d>& b);
+
+/// The condition (depth, load, hold time, motion) under which two fitted
+/// effects' predictions differ most, in words with both predictions.
+std::string SeparatingExperiment(const Problem& problem, const BaseModel& model,
+                                 const std::vector<Term>& fixed, const Term& a, const Term& b);
 
 // --- channels ------------------------------------------------------------------
 std::vector<ChannelFinding> RankChannels(const io::Log& log, const Problem& problem,

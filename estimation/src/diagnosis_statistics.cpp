@@ -7,6 +7,7 @@
 
 #include <boost/math/distributions/chi_squared.hpp>
 #include <boost/math/distributions/fisher_f.hpp>
+#include <boost/math/distributions/students_t.hpp>
 
 #include "chi_squared.h"
 #include "diagnosis_internal.h"
@@ -75,6 +76,19 @@ TestResult JarqueBera(const std::vector<double>& x) {
 double FUpperTail(double f, double d1, double d2) {
   if (!(f > 0.0) || d1 <= 0.0 || d2 <= 0.0) return 1.0;
   return boost::math::cdf(boost::math::complement(boost::math::fisher_f(d1, d2), f));
+}
+
+TestResult BlockImprovementTest(const std::vector<double>& gain_per_block) {
+  const double g = double(gain_per_block.size());
+  if (g < 2.0) return {};
+  const double mean = Mean(gain_per_block);
+  double square = 0.0;
+  for (double d : gain_per_block) square += (d - mean) * (d - mean);
+  const double se = std::sqrt(square / (g - 1.0) / g);
+  if (!(se > 0.0)) return {0.0, mean > 0.0 ? 0.0 : 1.0};
+  const double t = mean / se;
+  const boost::math::students_t student(g - 1.0);
+  return {t, boost::math::cdf(boost::math::complement(student, t))};
 }
 
 void HolmAdjust(std::vector<double>& p) {

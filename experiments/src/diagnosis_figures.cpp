@@ -10,6 +10,7 @@
 #include <map>
 #include <optional>
 #include <set>
+#include <stdexcept>
 
 #include "pliant/experiments/diagnosis_report.h"
 #include "pliant/experiments/plot.h"
@@ -75,7 +76,7 @@ std::vector<PlotPanel> PerJoint(const estimation::Diagnosis& d, const std::strin
     PlotSeries after = Scatter(AfterTitle(d), kAfter);
     for (std::size_t i = 0; i < s.row.size() && i < s.residual_before_rad[j].size(); ++i) {
       const std::optional<double> x = x_of(j, s.row[i]);
-      if (!x) continue;
+      if (!x || !std::isfinite(*x) || !std::isfinite(s.residual_before_rad[j][i])) continue;
       before.x.push_back(*x);
       before.y.push_back(kMrad * s.residual_before_rad[j][i]);
       if (HasAfter(s)) {
@@ -90,37 +91,62 @@ std::vector<PlotPanel> PerJoint(const estimation::Diagnosis& d, const std::strin
   return panels;
 }
 
-// The segment of the log with the largest RMS residual before, for one joint.
+// The segment where the effect changes joint j's residual most (the largest
+// drop of its mean square from before to after), when that drop is at least
+// a tenth of the segment's mean square before: otherwise the two curves would
+// lie on each other and the panel would show nothing.
 std::optional<double> WorstSegment(const io::Log& log, const estimation::Diagnosis& d, int j) {
   const auto segments = ColumnIfAny(log, "segment");
-  if (!segments) return std::nullopt;
-  std::map<double, std::pair<double, std::size_t>> sums;
+  if (!segments || !HasAfter(d.series)) return std::nullopt;
+  struct Sums { double before = 0.0, after = 0.0, count = 0.0; };
+  std::map<double, Sums> sums;
   const auto& s = d.series;
   for (std::size_t i = 0; i < s.row.size() && i < s.residual_before_rad[j].size(); ++i) {
-    auto& [sum, count] = sums[(*segments)[s.row[i]]];
-    sum += s.residual_before_rad[j][i] * s.residual_before_rad[j][i];
-    ++count;
+    const double b = s.residual_before_rad[j][i], a = s.residual_after_rad[j][i];
+    if (!std::isfinite(b) || !std::isfinite(a)) continue;
+    Sums& sum = sums[(*segments)[s.row[i]]];
+    sum.before += b * b, sum.after += a * a, sum.count += 1.0;
   }
   std::optional<double> worst;
-  double worst_ms = -1.0;
+  double worst_drop = 0.0;
   for (const auto& [segment, sum] : sums) {
-    if (sum.first / sum.second > worst_ms) worst_ms = sum.first / sum.second, worst = segment;
+    const double drop = (sum.before - sum.after) / sum.count;
+    if (drop > worst_drop && drop >= 0.1 * sum.before / sum.count) worst_drop = drop, worst = segment;
   }
   return worst;
+}
+
+// Panels with at least one point: gnuplot refuses a plot with none.
+std::vector<PlotPanel> WithPoints(std::vector<PlotPanel> panels) {
+  std::vector<PlotPanel> kept;
+  for (auto& panel : panels) {
+    bool any = false;
+    for (const auto& series : panel.series) any = any || !series.x.empty();
+    if (any) kept.push_back(std::move(panel));
+  }
+  return kept;
 }
 
 }  // namespace
 
 std::vector<std::string> WriteDiagnosisFigures(const std::string& dir, const io::Log& log,
-                                               const estimation::Diagnosis& d) {
+                                               const estimation::Diagnosis& d,
+                                               std::vector<std::string>* missing) {
   namespace fs = std::filesystem;
   fs::create_directories(dir);
   std::vector<std::string> paths;
   auto write = [&](Figure figure, const std::string& name) {
     figure.height_px = 420;
+    figure.panels = WithPoints(std::move(figure.panels));
     const std::string path = (fs::path(dir) / name).string();
-    WriteFigure(figure, path);
-    paths.push_back(path);
+    try {
+      if (figure.panels.empty()) throw std::runtime_error("no residual to plot in " + name);
+      WriteFigure(figure, path);
+      paths.push_back(path);
+    } catch (const std::exception& e) {
+      if (!missing) throw;
+      missing->push_back(name + ": " + e.what());
+    }
   };
   const std::vector<double> time = log.Column("t");
 
@@ -157,15 +183,16 @@ std::vector<std::string> WriteDiagnosisFigures(const std::string& dir, const io:
                   [&](int j, std::size_t row) { return std::optional(effort[j][row]); })},
         "fig5_residual_effort.png");
 
-  // Figs. 7-8: the worst segment of each joint, over time.
+  // Figs. 7-8: of each joint, the segment the effect changes most, over time;
+  // a joint where it changes no segment visibly has no panel.
   const std::optional<double> worst[2] = {WorstSegment(log, d, 0), WorstSegment(log, d, 1)};
   const auto segments = ColumnIfAny(log, "segment");
   auto in_worst = [&](int j, std::size_t row) -> std::optional<double> {
-    if (worst[j] && (*segments)[row] != *worst[j]) return std::nullopt;
+    if (!worst[j] || (*segments)[row] != *worst[j]) return std::nullopt;
     return time[row];
   };
   Figure segment_figure{
-      "Worst segment of each joint: the tip stood still, so a right model "
+      "The segment the effect changes most, per joint: the tip stood still, so a right model "
       "gives a flat zero residual (analogue of the paper's Figs. 7, 8)",
       PerJoint(d, "time (s)", in_worst)};
   for (int j = 0; j < 2; ++j) {
@@ -173,7 +200,7 @@ std::vector<std::string> WriteDiagnosisFigures(const std::string& dir, const io:
     if (worst[j]) panel.title += ", segment " + std::to_string(static_cast<long>(*worst[j]));
     panel.title += j == 0 ? " (Fig. 7)" : " (Fig. 8)";
   }
-  write(segment_figure, "fig7_fig8_worst_segment.png");
+  if (worst[0] || worst[1]) write(segment_figure, "fig7_fig8_worst_segment.png");
   return paths;
 }
 

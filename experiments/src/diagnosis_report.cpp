@@ -90,7 +90,8 @@ std::string StatisticsTable(const estimation::Diagnosis& d) {
   // The filter runs the model as given (it has no candidate effect in it), so
   // its NIS has no "after" column.
   t += Row({"filter's mean NIS per degree of freedom (95 % band)",
-            Number("%.2f", b.mean_nis) + " (" + pair("%.2f", b.nis_band[0], b.nis_band[1]) + ")",
+            Number("%.2f", b.mean_nis) + " (" + pair("%.2f", b.nis_band[0], b.nis_band[1]) +
+                ")<br>" + Escaped(detail::NisVerdict(b)),
             "—", "1 when the noise model is right"});
   t += Row({"Ljung–Box Q (p): whiteness",
             Number("%.1f", b.ljung_box_q) + " (" + P(b.ljung_box_p) + ")",
@@ -104,8 +105,10 @@ std::string StatisticsTable(const estimation::Diagnosis& d) {
 }
 
 std::string EffectsTable(const estimation::Diagnosis& d) {
-  std::string t = "<table>\n" + Row({"#", "effect", "what it is", "channels", "error removed", "p",
-                                     "ΔAIC", "held-out RMS (mm)", "size", "fitted parameters"},
+  std::string t = "<table>\n" + Row({"#", "effect", "what it is", "channels", "error removed",
+                                     "removed given its closest rival", "p", "ΔAIC",
+                                     "held-out RMS (mm)", "size (RMS it changes)",
+                                     "fitted parameters"},
                                     "th");
   int rank = 0;
   for (const auto& e : d.effects) {
@@ -120,14 +123,48 @@ std::string EffectsTable(const estimation::Diagnosis& d) {
     }
     std::string name = "<code>" + Escaped(e.name) + "</code>";
     if (e.missing) name += " <strong class=\"missing\">missing</strong>";
+    std::string description = Escaped(e.description);
+    if (!e.indistinguishable_from.empty()) {
+      std::string others;
+      for (const auto& o : e.indistinguishable_from) others += (others.empty() ? "" : ", ") + o;
+      description += "<br><strong>Cannot tell from " + Escaped(others) +
+                     "</strong> on this log (each removes little once the other is in). To "
+                     "separate them: " + Escaped(e.separating_experiment) + ".";
+    }
     t += Row(
-        {std::to_string(++rank), name, Escaped(e.description), channels,
-         Number("%.1f %%", 100.0 * e.score), P(e.p_value), Number("%.1f", e.delta_aic),
+        {std::to_string(++rank), name, description, channels,
+         Number("%.1f %%", 100.0 * e.score), Number("%.1f %%", 100.0 * e.unique_score),
+         P(e.p_value), Number("%.1f", e.delta_aic),
          Number("%.3f", e.heldout_rms_before_mm) + " → " + Number("%.3f", e.heldout_rms_after_mm),
          Number("%.3g", e.size) + " ± " + Number("%.2g", e.size_sd) + " " + Escaped(e.size_unit),
          parameters});
   }
   return t + "</table>\n";
+}
+
+// The --add effects as fitted on every compared row: what the model now holds.
+std::string AddedTable(const estimation::Diagnosis& d) {
+  if (d.added.empty()) return "";
+  std::string t = "<h2>Effects added to the model (<code>--add</code>), as fitted</h2>\n<table>\n" +
+                  Row({"effect", "what it is", "parameter", "value ± σ"}, "th");
+  for (const auto& e : d.added) {
+    for (std::size_t i = 0; i < e.parameter_names.size() && i < e.parameters.size(); ++i) {
+      std::string value = Number("%.4g", e.parameters[i]);
+      if (i < e.parameter_sd.size()) value += " ± " + Number("%.2g", e.parameter_sd[i]);
+      if (detail::AtBound(e.name, e.parameter_names[i], e.parameters[i]))
+        value += " <em>(at its bound)</em>";
+      t += Row({i == 0 ? "<code>" + Escaped(e.name) + "</code>" : "",
+                i == 0 ? Escaped(e.description) : "", Escaped(e.parameter_names[i]), value});
+    }
+  }
+  return t + "</table>\n";
+}
+
+std::string Notes(const estimation::Diagnosis& d, const std::vector<std::string>& missing) {
+  std::string n;
+  for (const auto& note : d.notes) n += "<li>" + Escaped(note) + "</li>\n";
+  for (const auto& m : missing) n += "<li>A picture is missing: " + Escaped(m) + "</li>\n";
+  return n.empty() ? "" : "<h2>What this log cannot tell</h2>\n<ul>\n" + n + "</ul>\n";
 }
 
 std::string ChannelsTable(const estimation::Diagnosis& d) {
@@ -136,9 +173,11 @@ std::string ChannelsTable(const estimation::Diagnosis& d) {
                                     "th");
   int rank = 0;
   for (const auto& c : d.channels) {
+    std::string words = Escaped(c.finding);
+    if (!c.remark.empty()) words += "<br><em>Note: " + Escaped(c.remark) + ".</em>";
     t += Row({std::to_string(++rank), "<code>" + Escaped(c.name) + "</code>",
               std::to_string(c.joint), std::to_string(c.lag), Number("%.1f %%", 100.0 * c.score),
-              P(c.p_value), Escaped(c.finding)});
+              P(c.p_value), words});
   }
   return t + "</table>\n";
 }
@@ -190,7 +229,8 @@ std::string Caption(const std::string& file) {
 
 std::string DiagnosisReportHtml(const io::Log& log, const estimation::Diagnosis& d,
                                 const DiagnosisReportSources& sources,
-                                const std::vector<std::string>& figure_paths) {
+                                const std::vector<std::string>& figure_paths,
+                                const std::vector<std::string>& missing_figures) {
   std::ostringstream h;
   h << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
     << "<title>pliant diagnose — " << Escaped(sources.log_path) << "</title>\n"
@@ -211,11 +251,15 @@ std::string DiagnosisReportHtml(const io::Log& log, const estimation::Diagnosis&
   }
   h << "Held-out RMS error at the tip " << Number("%.3f", d.rms_before_mm) << " mm → "
     << Number("%.3f", d.rms_after_mm) << " mm.</p>\n"
-    << "<h2>Before and after</h2>\n"
+    << Notes(d, missing_figures) << AddedTable(d) << "<h2>Before and after</h2>\n"
     << StatisticsTable(d) << "<h2>Candidate effects, best first</h2>\n"
     << "<p>Each candidate is fitted as an extension of the model; \"error removed\" is the "
-       "held-out RMS reduction, p its significance adjusted for the candidates tried "
-       "(method: docs/diagnose-method.md).</p>\n"
+       "held-out RMS reduction (segments the fit did not see), \"removed given its closest "
+       "rival\" what it still removes when fitted together with the candidate that explains most "
+       "of the same residual, p the significance of the held-out gain with the segments as "
+       "the independent units, adjusted for the candidates tried; \"size\" is the RMS at the "
+       "tip of what the fitted effect changes in the residual, so a larger size goes with a "
+       "larger in-sample reduction (method: docs/diagnose-method.md).</p>\n"
     << EffectsTable(d) << "<h2>Channels that explain the residual, best first</h2>\n"
     << ChannelsTable(d) << "<h2>Plots</h2>\n";
   for (const auto& path : figure_paths) {
@@ -238,7 +282,7 @@ DiagnosisReportFiles WriteDiagnosisReport(const std::string& dir, const io::Log&
   if (!mkdtemp(scratch.data())) throw std::runtime_error("cannot make a temporary directory");
   DiagnosisReportFiles files;
   try {
-    const auto drawn = WriteDiagnosisFigures(scratch, log, d);
+    const auto drawn = WriteDiagnosisFigures(scratch, log, d, &files.missing_figures);
     for (const auto& path : drawn) {
       files.figures.push_back((fs::path(dir) / "figures" / fs::path(path).filename()).string());
       io::WriteFileAtomically(files.figures.back(), ReadBytes(path));
@@ -246,7 +290,8 @@ DiagnosisReportFiles WriteDiagnosisReport(const std::string& dir, const io::Log&
     files.summary_json = (fs::path(dir) / "summary.json").string();
     io::WriteFileAtomically(files.summary_json, DiagnosisSummaryJson(d).dump(2) + "\n");
     files.html = (fs::path(dir) / "index.html").string();
-    io::WriteFileAtomically(files.html, DiagnosisReportHtml(log, d, sources, drawn));
+    io::WriteFileAtomically(files.html,
+                            DiagnosisReportHtml(log, d, sources, drawn, files.missing_figures));
   } catch (...) {
     std::error_code ignored;
     fs::remove_all(scratch, ignored);

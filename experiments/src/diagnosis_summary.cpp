@@ -19,6 +19,17 @@ bool detail::AtBound(const std::string& effect, const std::string& parameter, do
   return false;
 }
 
+std::string detail::NisVerdict(const estimation::ResidualStatistics& s) {
+  if (!(s.nis_band[1] > 0.0)) return "not computed";
+  if (s.mean_nis > s.nis_band[1])
+    return "above its band: the filter's errors are larger than its noise model allows — the "
+           "model lacks something, or the noise settings are too small";
+  if (s.mean_nis < s.nis_band[0])
+    return "below its band: the filter's noise model is pessimistic (its σ are wider than the "
+           "errors), not a sign of a missing effect";
+  return "inside its band: the filter's noise model fits these rows";
+}
+
 namespace {
 
 using Json = nlohmann::ordered_json;
@@ -33,7 +44,8 @@ Json Statistics(const estimation::ResidualStatistics& s) {
               {"ljung_box_q", s.ljung_box_q},
               {"ljung_box_p", s.ljung_box_p},
               {"normality_statistic", s.normality_statistic},
-              {"normality_p", s.normality_p}};
+              {"normality_p", s.normality_p},
+              {"nis_verdict", detail::NisVerdict(s)}};
 }
 
 Json Effect(const estimation::EffectFinding& e) {
@@ -59,12 +71,16 @@ Json Effect(const estimation::EffectFinding& e) {
               {"delta_bic", e.delta_bic},
               {"heldout_rms_before_mm", e.heldout_rms_before_mm},
               {"heldout_rms_after_mm", e.heldout_rms_after_mm},
+              {"unique_score", e.unique_score},
+              {"indistinguishable_from", e.indistinguishable_from},
+              {"separating_experiment", e.separating_experiment},
               {"parameters", parameters}};
 }
 
 Json Channel(const estimation::ChannelFinding& c) {
-  return Json{{"name", c.name},   {"lag", c.lag},         {"score", c.score},
-              {"joint", c.joint}, {"p_value", c.p_value}, {"finding", c.finding}};
+  return Json{{"name", c.name},       {"lag", c.lag},         {"score", c.score},
+              {"joint", c.joint},     {"p_value", c.p_value}, {"finding", c.finding},
+              {"remark", c.remark}};
 }
 
 }  // namespace
@@ -74,14 +90,21 @@ nlohmann::ordered_json DiagnosisSummaryJson(const estimation::Diagnosis& d) {
   for (const auto& e : d.effects) effects.push_back(Effect(e));
   Json channels = Json::array();
   for (const auto& c : d.channels) channels.push_back(Channel(c));
+  Json added = Json::array();
+  for (const auto& e : d.added) added.push_back(Effect(e));
   return Json{{"rms_before", d.rms_before_mm},
               {"rms_after", d.rms_after_mm},
               {"missing_effect", d.missing_effect ? Json(*d.missing_effect) : Json(nullptr)},
               {"effects", effects},
               {"channels", channels},
               {"rms_unit", "mm"},
+              {"rms_recalibrated", d.rms_recalibrated_mm},
               {"reference", d.reference},
               {"added_effects", d.added_effects},
+              {"added", added},
+              {"selected", d.selected},
+              {"notes", d.notes},
+              {"joints_recorded", {d.joint_recorded[0], d.joint_recorded[1]}},
               {"before", Statistics(d.before)},
               {"after", Statistics(d.after)}};
 }

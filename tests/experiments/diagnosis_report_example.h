@@ -60,9 +60,9 @@ inline estimation::Diagnosis ExampleDiagnosis(const io::Log& log) {
   drift.size_sd = 0.08;
   drift.size_unit = "mm";
   d.effects = {friction, drift};
-  d.channels = {{"sign(v1)", 1, 0, 0.81, 1e-20, "joint 1 reads 1 mrad high while v1 > 0"},
-                {"|tau1|", 1, 2, 0.12, 1e-3, "grows with the load"},
-                {"t", 2, 0, 0.01, 0.9, ""}};
+  d.channels = {{"sign(v1)", 1, 0, 0.81, 1e-20, "joint 1 reads 1 mrad high while v1 > 0", ""},
+                {"|tau1|", 1, 2, 0.12, 1e-3, "grows with the load", ""},
+                {"t", 2, 0, 0.01, 0.9, "", ""}};
   for (std::size_t i = 0; i < log.Rows(); ++i) {
     const double v1 = log.Value(i, 6);
     d.series.row.push_back(i);

@@ -46,7 +46,19 @@ struct DiagnoseOptions {
   std::size_t max_samples = 6000;
   /// An effect is called missing only if it also cuts the held-out RMS by
   /// at least this fraction.
-  double min_heldout_reduction = 0.3;
+  double min_heldout_reduction = 0.15;
+  /// Two material candidates are told apart when one cuts the held-out RMS
+  /// left by the other by at least this fraction; below it both ways they
+  /// explain the same residual and the diagnosis says it cannot tell.
+  double min_unique_reduction = 0.1;
+  /// At most this many material candidates enter the pairwise comparison
+  /// (the best by held-out reduction); each pair costs one cross-validation.
+  int max_compared_candidates = 4;
+  /// Refit the model's compliance scale and clearance per joint together with
+  /// every candidate (and alone, for the baseline the candidates are scored
+  /// against): an identification that absorbed part of the effect then no
+  /// longer hides it, and no candidate wins by correcting K or δ alone.
+  bool recalibrate_base = true;
   /// RMS errors are of the residual averaged over windows this long (s):
   /// the model's error, with the sensors' white noise averaged out. 0: per sample.
   double rms_window_s = 0.05;
@@ -79,6 +91,11 @@ struct ChannelFinding {
   double score = 0.0;      ///< fraction of residual variance explained, 0..1
   double p_value = 1.0;    ///< adjusted for the number of channels × lags tested
   std::string finding;     ///< in words: "joint 1 reads 0.8 mrad high while v1 > 0 …"
+  /// A caution for the reader, or "": the best lag sits at the edge of the
+  /// ±max-lag window (the true lag may be longer), or the channel is the log's
+  /// time or segment number (a drift or a difference between segments, not a
+  /// physical cause).
+  std::string remark;
 };
 
 /// One candidate effect fitted as an extension of the model.
@@ -92,13 +109,25 @@ struct EffectFinding {
   double delta_bic = 0.0;
   double heldout_rms_before_mm = 0.0;
   double heldout_rms_after_mm = 0.0;
-  double size = 0.0;           ///< its largest contribution over the log, in `size_unit`
+  /// RMS over the compared rows of what the fitted effect changes in the
+  /// residual (tip angles profiled as the residual is), in `size_unit`: on the
+  /// fitted rows size² ≈ RMS_before² − RMS_after², so a larger size is a larger
+  /// in-sample reduction.
+  double size = 0.0;
   double size_sd = 0.0;
   std::string size_unit;       ///< "mm" at the tip
   std::vector<std::string> parameter_names;
   std::vector<double> parameters;     ///< fitted values
   std::vector<double> parameter_sd;   ///< from ceres::Covariance
   bool missing = false;        ///< significant and large enough to call missing
+  /// Held-out RMS reduction when this effect is added last, given the
+  /// effects selected before it (all refitted jointly): what it explains that
+  /// the others cannot. Equals `score` for the first selected effect.
+  double unique_score = 0.0;
+  /// Effects that explain the same residual (each removes little once the
+  /// other is in), with the experiment that would separate them; empty when none.
+  std::vector<std::string> indistinguishable_from;
+  std::string separating_experiment;
 };
 
 /// Sample-by-sample series, for plots (one entry per log row used).
@@ -113,18 +142,36 @@ struct Diagnosis {
   std::string reference;          ///< "tip_fixed", "q*_ref", "q*_true"
   double rms_before_mm = 0.0;     ///< held-out, the model as given
   double rms_after_mm = 0.0;      ///< held-out, with the added effects (or the best, if none added)
+  /// Held-out, the model with its compliance scale and clearance refitted
+  /// (DiagnoseOptions::recalibrate_base; else the model as given): the
+  /// baseline every candidate's score is measured against.
+  double rms_recalibrated_mm = 0.0;
   std::optional<std::string> missing_effect;
   ResidualStatistics before;
   ResidualStatistics after;
   std::vector<EffectFinding> effects;    ///< best first
   std::vector<ChannelFinding> channels;  ///< best first
   std::vector<std::string> added_effects;
+  /// The --add effects as fitted (jointly, on every compared row): parameters ± sd.
+  std::vector<EffectFinding> added;
+  /// Effects selected stepwise (each refitted with the ones before it), in order.
+  std::vector<std::string> selected;
+  /// What this log could not tell and why (an unrecorded joint, loads inside
+  /// the clearance, …), in words.
+  std::vector<std::string> notes;
+  bool joint_recorded[2] = {true, true};
+  int max_lag_samples = 0;  ///< the lag window the channels were tried over
   ResidualSeries series;
 };
 
 /// Catalogue effects offered as candidates (those whose effect is not part
 /// of the base model).
 std::vector<std::string> CandidateEffectNames();
+
+/// Throws io::InputError for an unknown effect name, an effect given twice
+/// in --add or --candidate, or one that is both added and a candidate
+/// (`log_path` names the file in the unknown-name message).
+void CheckEffectOptions(const DiagnoseOptions& options, const std::string& log_path);
 
 /// Throws io::InputError when the log cannot be diagnosed (no tip_fixed
 /// segment and no reference columns; an unknown effect name), naming the

@@ -30,6 +30,9 @@ struct DiagnosisReportFiles {
   std::string html;                  ///< REPORT_DIR/index.html, self-contained
   std::string summary_json;          ///< REPORT_DIR/summary.json (DiagnosisSummaryJson)
   std::vector<std::string> figures;  ///< REPORT_DIR/figures/*.png, the same plots as files
+  /// Pictures that could not be drawn ("NAME: why"): the report says they are
+  /// missing; the text, the tables and summary.json are written all the same.
+  std::vector<std::string> missing_figures;
 };
 
 /// The machine-readable summary, keys in this order:
@@ -44,14 +47,18 @@ nlohmann::ordered_json DiagnosisSummaryJson(const estimation::Diagnosis& diagnos
 /// The plots of the report (residual against time, against the best channels,
 /// the analogues of the paper's Figs. 5, 7 and 8), as PNG files in `dir`.
 /// `log` must be the log the diagnosis was made from (series rows index it).
-/// Throws std::runtime_error when gnuplot is missing or fails.
+/// A plot that cannot be drawn (gnuplot missing or failing, nothing to plot)
+/// is listed in `missing` ("NAME: why") when given, else thrown as
+/// std::runtime_error.
 std::vector<std::string> WriteDiagnosisFigures(const std::string& dir, const io::Log& log,
-                                               const estimation::Diagnosis& diagnosis);
+                                               const estimation::Diagnosis& diagnosis,
+                                               std::vector<std::string>* missing = nullptr);
 
 /// The report's HTML with the given PNG files embedded (no file is written).
 std::string DiagnosisReportHtml(const io::Log& log, const estimation::Diagnosis& diagnosis,
                                 const DiagnosisReportSources& sources,
-                                const std::vector<std::string>& figure_paths);
+                                const std::vector<std::string>& figure_paths,
+                                const std::vector<std::string>& missing_figures = {});
 
 /// Writes REPORT_DIR/index.html, summary.json and figures/ (creating the
 /// directory). Each file is written atomically: a run killed midway leaves the

@@ -1,0 +1,87 @@
+#!/usr/bin/python3
+"""Hit rate of `pliant diagnose` on the second generator's logs (docs/validation.md).
+
+For each case: generate the calibration and test logs, `pliant identify` the
+instrument from the calibration log, `pliant diagnose --json` the test log,
+then `--add` the true effect and read the held-out error before and after.
+
+Usage: hit_rate.py PLIANT_BINARY OUT_DIR [--seed N] [--case NAME ...]
+"""
+import argparse
+import json
+import os
+import subprocess
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+import generate  # noqa: E402
+
+
+def run(command):
+    done = subprocess.run(command, capture_output=True, text=True)
+    if done.returncode != 0:
+        return None, done.stderr.strip().splitlines()[-1] if done.stderr.strip() else "exit %d" % done.returncode
+    return done.stdout, None
+
+
+def diagnose(pliant, params, log, report, extra=()):
+    out, error = run([pliant, "diagnose", "--params", params, log, "--json", "-o", report, *extra])
+    return (json.loads(out), None) if out else (None, error)
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("pliant")
+    parser.add_argument("out_dir")
+    parser.add_argument("--seed", type=int, default=11)
+    parser.add_argument("--case", action="append", choices=generate.CASES)
+    args = parser.parse_args()
+    cases = args.case or generate.CASES
+    subprocess.run([sys.executable, os.path.join(HERE, "generate.py"), args.out_dir,
+                    "--seed", str(args.seed)] + sum((["--case", c] for c in cases), []), check=True)
+    print("| hidden effect | named first | missing | also flagged | held-out RMS before -> with the truth added (mm) | cut |")
+    print("|---|---|---|---|---|---|")
+    hits, cuts = 0, []
+    for case in cases:
+        d = os.path.join(args.out_dir, case)
+        params = os.path.join(d, "identified.json")
+        _, error = run([args.pliant, "identify", os.path.join(d, "calibration.csv"), "-o", params])
+        if error:
+            print("| %s | identify failed: %s | | | | |" % (case, error))
+            continue
+        log = os.path.join(d, "test.csv")
+        result, error = diagnose(args.pliant, params, log, os.path.join(d, "report"))
+        if error:
+            print("| %s | diagnose failed: %s | | | | |" % (case, error))
+            continue
+        first = result["effects"][0]["name"] if result["effects"] else "-"
+        missing = result["missing_effect"]
+        flagged = [e["name"] for e in result["effects"] if e["missing"] and e["name"] != missing]
+        truth = None if case == "none" else case
+        hit = missing == truth
+        hits += hit
+        cell = ""
+        if truth:
+            added, error = diagnose(args.pliant, params, log, os.path.join(d, "report_added"),
+                                    ["--add", truth])
+            if added:
+                cut = 1.0 - added["rms_after"] / added["rms_before"]
+                cuts.append(cut)
+                cell = "%.3f -> %.3f | %.0f %%" % (added["rms_before"], added["rms_after"], 100 * cut)
+            else:
+                cell = "failed: %s |" % error
+        else:
+            cell = "%.3f | -" % result["rms_before"]
+        print("| %s | %s | %s%s | %s | %s |" % (case, first, missing or "none", "" if hit else " (wrong)",
+                                              ", ".join(flagged) or "-", cell))
+    print()
+    effects = [c for c in cases if c != "none"]
+    print("right answer (the true effect named missing, the control quiet): %d of %d" % (hits, len(cases)))
+    if cuts:
+        print("adding the true effect cuts the held-out error by >= 50 %%: %d of %d"
+              % (sum(c >= 0.5 for c in cuts), len(effects)))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,117 @@
+// Diagnose() on logs that allow less than a full diagnosis: one joint
+// recorded, empty tracker columns, pushes that stay inside twice the
+// clearance's load; effect options given twice; the segment-block test of a
+// held-out gain against its closed form.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "../../estimation/src/diagnosis_internal.h"
+#include "diagnosis_support.h"
+#include "pliant/estimation/diagnosis.h"
+#include "pliant/io/input_error.h"
+
+namespace pliant::testing {
+namespace {
+
+using estimation::Diagnose;
+using estimation::Diagnosis;
+
+// A copy of `log` with the named columns emptied (NaN in every row, as the
+// log reader presents an absent or empty column).
+io::Log Emptied(io::Log log, const std::vector<std::string>& names) {
+  for (const auto& name : names) {
+    const int c = log.header.Index(name);
+    for (std::size_t r = 0; r < log.Rows(); ++r) log.values[r * log.Columns() + c] = NAN;
+  }
+  return log;
+}
+
+const io::Log& FrictionLog() {
+  static const io::Log log = experiments::Simulate(
+      ShortDivot(R"({"joint_friction":{"coulomb1":0.05,"coulomb2":0.05}})"), 5).log;
+  return log;
+}
+models::ModelParameters FrictionModel() {
+  return ModelOf(ShortDivot(R"({"joint_friction":{"coulomb1":0.05,"coulomb2":0.05}})"));
+}
+
+TEST(DiagnoseLimits, AOneJointLogIsDiagnosedOnThatJointAndSaysSo) {
+  const io::Log log = Emptied(FrictionLog(), {"q2", "tau2", "v2", "q2_ref", "q2_true"});
+  estimation::DiagnoseOptions options;
+  options.candidates = {"joint_friction", "effort_drift"};
+  const Diagnosis d = Diagnose(log, "joint1.csv", FrictionModel(), options);
+  EXPECT_TRUE(d.joint_recorded[0]);
+  EXPECT_FALSE(d.joint_recorded[1]);
+  ASSERT_FALSE(d.notes.empty());
+  EXPECT_NE(d.notes[0].find("joint 2 is not recorded"), std::string::npos) << d.notes[0];
+  EXPECT_EQ(d.before.rms_rad[1], 0.0) << "nothing is read from joint 2";
+  for (double r : d.series.residual_before_rad[1]) EXPECT_TRUE(std::isnan(r));
+  EXPECT_EQ(d.missing_effect.value_or("none"), "joint_friction");
+}
+
+TEST(DiagnoseLimits, EmptyTrackerColumnsFallBackToTheHeldTip) {
+  const io::Log log = Emptied(FrictionLog(), {"q1_ref", "q2_ref"});
+  estimation::DiagnoseOptions options;
+  options.candidates = {"joint_friction"};
+  const Diagnosis d = Diagnose(log, "divot.csv", FrictionModel(), options);
+  EXPECT_EQ(d.reference, "tip_fixed");
+  options.reference = "q*_ref";
+  try {
+    Diagnose(log, "divot.csv", FrictionModel(), options);
+    ADD_FAILURE() << "no InputError";
+  } catch (const io::InputError& e) {
+    EXPECT_EQ(e.line(), 0u) << "the whole file, not line 1";
+    EXPECT_NE(e.problem().find("no q*_ref reference"), std::string::npos) << e.problem();
+    EXPECT_EQ(e.fix().find("N·m"), std::string::npos) << "no advice about pushing: " << e.fix();
+  }
+}
+
+// The short divot pushes to 1 N·m; a model whose clearance takes 0.6 N·m to
+// take up wants 1.2 N·m: the diagnosis uses the rows beyond the clearance and
+// says that the clearance's effects cannot be identified.
+TEST(DiagnoseLimits, PushesInsideTwiceTheClearanceLoadAreDiagnosedWithANote) {
+  auto model = FrictionModel();
+  for (auto& joint : model.joints) joint.deadzone_width_nm = joint.tau_min_nm = 0.6;
+  estimation::DiagnoseOptions options;
+  options.candidates = {"joint_friction", "backlash_depth"};
+  const Diagnosis d = Diagnose(FrictionLog(), "divot.csv", model, options);
+  ASSERT_FALSE(d.notes.empty());
+  EXPECT_NE(d.notes.back().find("1.2 / 1.2 N·m"), std::string::npos) << d.notes.back();
+  EXPECT_NE(d.notes.back().find("backlash_depth"), std::string::npos) << d.notes.back();
+  EXPECT_GT(d.series.row.size(), 100u);
+}
+
+TEST(DiagnoseLimits, AnEffectGivenTwiceOrBothAddedAndCandidateIsRefused) {
+  estimation::DiagnoseOptions twice;
+  twice.added_effects = {"joint_friction", "joint_friction"};
+  try {
+    estimation::CheckEffectOptions(twice, "divot.csv");
+    ADD_FAILURE() << "no InputError";
+  } catch (const io::InputError& e) {
+    EXPECT_EQ(e.file(), "--add");
+    EXPECT_EQ(e.problem(), "effect 'joint_friction' is given twice");
+  }
+  estimation::DiagnoseOptions both;
+  both.added_effects = {"joint_friction"};
+  both.candidates = {"joint_friction"};
+  try {
+    estimation::CheckEffectOptions(both, "divot.csv");
+    ADD_FAILURE() << "no InputError";
+  } catch (const io::InputError& e) {
+    EXPECT_EQ(e.file(), "--candidate");
+    EXPECT_NE(e.problem().find("both added"), std::string::npos) << e.problem();
+  }
+}
+
+// Gains 1, 2, 3: mean 2, sd 1, t = 2·√3 on 2 degrees of freedom, whose upper
+// tail is 1/2 − t / (2·√(2 + t²)) = 0.0370.
+TEST(DiagnoseLimits, TheSegmentBlockTestMatchesStudentsT) {
+  const auto r = estimation::diagnosis::BlockImprovementTest({1.0, 2.0, 3.0});
+  EXPECT_NEAR(r.statistic, 2.0 * std::sqrt(3.0), 1e-12);
+  EXPECT_NEAR(r.p_value, 0.5 - 2.0 * std::sqrt(3.0) / (2.0 * std::sqrt(14.0)), 1e-12);
+  EXPECT_EQ(estimation::diagnosis::BlockImprovementTest({1.0}).p_value, 1.0);
+}
+
+}  // namespace
+}  // namespace pliant::testing
