@@ -29,6 +29,12 @@ std::string TareFromLog(const std::string& log_path, const std::string& spec,
     throw io::InputError("--tare", 0, 0, "'" + spec + "' is neither auto nor T0:T1",
                          "write --tare auto, or --tare 0:2.5 for the rows with t from 0 to 2.5 s");
   }
+  if (log_path == "-") {
+    throw io::InputError("--tare", 0, 0,
+                         "the tare reads the log before the correction does, and standard input "
+                         "can be read once only",
+                         "give the log as a file, or leave out --tare");
+  }
   const io::Log log = io::ReadLog(log_path);
   const io::StandardColumns c(log.header);
   std::vector<double> load[2];
