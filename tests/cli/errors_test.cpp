@@ -525,7 +525,7 @@ TEST(UsageError, AnUnknownCommandIsNamedWithTheKnownOnes) {
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_EQ(r.err,
             "pliant: unknown command 'identfy' \u2014 use one of: correct, identify, params, "
-            "simulate, filter, diagnose, montecarlo (pliant --help)\n");
+            "simulate, filter, diagnose, montecarlo, import (pliant --help)\n");
 }
 
 }  // namespace
