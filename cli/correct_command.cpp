@@ -24,9 +24,10 @@ struct CorrectOptions {
 
 void PrintSummary(const CorrectOptions& options, const estimation::LogCorrectionSummary& s) {
   std::FILE* out = SummaryStream(options.output_path);
-  std::fprintf(out, "pliant correct: %zu rows, %s model -> %s\n", s.rows, options.model_name.c_str(),
-              options.output_path.c_str());
-  if (s.skipped_rows > 0) std::fprintf(out, "  skipped %zu bad rows (--skip-bad-rows)\n", s.skipped_rows);
+  std::fprintf(out, "pliant correct: %zu rows, %s model -> %s\n", s.rows,
+               options.model_name.c_str(), options.output_path.c_str());
+  if (s.skipped_rows > 0)
+    std::fprintf(out, "  skipped %zu bad rows (--skip-bad-rows)\n", s.skipped_rows);
   if (s.depth_clamped_rows > 0) {
     std::fprintf(stderr,
                  "warning: %zu rows have an insertion depth outside the parameters' valid range; "
@@ -34,12 +35,13 @@ void PrintSummary(const CorrectOptions& options, const estimation::LogCorrection
                  s.depth_clamped_rows);
   }
   if (s.reference.empty() || s.corrected.count() == 0) return;
-  std::fprintf(out, "  tip error against %s over %zu rows:\n", s.reference.c_str(), s.corrected.count());
+  std::fprintf(out, "  tip error against %s over %zu rows:\n", s.reference.c_str(),
+               s.corrected.count());
   std::fprintf(out, "    %-20s RMS %7.3f mm   max %7.3f mm\n", "uncorrected", s.uncorrected.RmsMm(),
-              s.uncorrected.MaxMm());
+               s.uncorrected.MaxMm());
   const std::string label = "corrected (" + options.model_name + ")";
   std::fprintf(out, "    %-20s RMS %7.3f mm   max %7.3f mm\n", label.c_str(), s.corrected.RmsMm(),
-              s.corrected.MaxMm());
+               s.corrected.MaxMm());
 }
 
 void RunCorrect(const CorrectOptions& options) {

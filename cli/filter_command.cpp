@@ -36,14 +36,16 @@ void PrintAccuracy(std::FILE* out, const char* label, const estimation::TipError
 void PrintSummary(const FilterCommandOptions& o, const estimation::LogFilterSummary& s) {
   std::FILE* out = SummaryStream(o.output_path);
   std::fprintf(out, "pliant filter: %zu rows%s -> %s\n", s.rows, s.smoothed ? ", RTS smoothed" : "",
-              o.output_path.c_str());
-  if (s.skipped_rows > 0) std::fprintf(out, "  skipped %zu bad rows (--skip-bad-rows)\n", s.skipped_rows);
+               o.output_path.c_str());
+  if (s.skipped_rows > 0)
+    std::fprintf(out, "  skipped %zu bad rows (--skip-bad-rows)\n", s.skipped_rows);
   std::fprintf(out, "  mean NIS per measurement %.3f (1 when the noise model is right)\n",
-              s.mean_nis_per_dof);
-  std::fprintf(out, "  rows flagged: rejected %zu, missing %zu, depth out of range %zu, "
-              "effort saturated %zu, model mismatch %zu\n",
-              s.rejected_rows, s.missing_rows, s.depth_out_of_range_rows, s.saturated_rows,
-              s.mismatch_rows);
+               s.mean_nis_per_dof);
+  std::fprintf(out,
+               "  rows flagged: rejected %zu, missing %zu, depth out of range %zu, "
+               "effort saturated %zu, model mismatch %zu\n",
+               s.rejected_rows, s.missing_rows, s.depth_out_of_range_rows, s.saturated_rows,
+               s.mismatch_rows);
   if (s.depth_out_of_range_rows > 0) {
     std::fprintf(stderr,
                  "warning: %zu rows have an insertion depth outside the parameters' valid range; "
@@ -51,7 +53,8 @@ void PrintSummary(const FilterCommandOptions& o, const estimation::LogFilterSumm
                  s.depth_out_of_range_rows);
   }
   if (s.reference.empty() || s.filtered.count() == 0) return;
-  std::fprintf(out, "  tip error against %s over %zu rows:\n", s.reference.c_str(), s.filtered.count());
+  std::fprintf(out, "  tip error against %s over %zu rows:\n", s.reference.c_str(),
+               s.filtered.count());
   PrintAccuracy(out, "uncorrected", s.uncorrected);
   PrintAccuracy(out, "filter", s.filtered);
   if (s.smoothed) PrintAccuracy(out, "smoother", s.smoothed_error);

@@ -132,7 +132,8 @@ void RunIdentify(const IdentifyOptions& options) {
     json["output"] = options.output_path;
     std::fprintf(out, "%s\n", json.dump(2).c_str());
   } else {
-    std::fprintf(out, "pliant identify: %s", estimation::IdentificationTable(result, data, laws).c_str());
+    std::fprintf(out, "pliant identify: %s",
+                 estimation::IdentificationTable(result, data, laws).c_str());
     std::fprintf(out, "  wrote %s\n", options.output_path.c_str());
   }
   for (const auto& w : result.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());

@@ -75,8 +75,8 @@ io::Log ReadBag(const ImportCommandOptions& options) {
   return ros::ReadCrtkBag(path, {options.arm});
 #else
   throw io::InputError(path, 0, 0,
-                       "this pliant was built without ROS 1 bag support (cmake found no ROS 1: "
-                       "see its 'ROS 1 bag support' line)",
+                       "this pliant was built without ROS 1 bag support (cmake's 'ROS 1 bag "
+                       "support' line says why)",
                        "install Debian's librosbag-dev libroscpp-dev libsensor-msgs-dev "
                        "(scripts/install-deps.sh does) and rebuild pliant");
 #endif

@@ -41,14 +41,15 @@ void RunSimulate(const SimulateOptions& options) {
   io::WriteLog(options.output_path, result.log);
   std::FILE* out = SummaryStream(options.output_path);
   std::fprintf(out, "pliant simulate: %s (%s), seed %llu -> %s\n", scenario.name.c_str(),
-              experiments::ExperimentName(scenario.type),
-              static_cast<unsigned long long>(options.seed), options.output_path.c_str());
-  std::fprintf(out, "  %zu rows, %zu holds, %zu segments; %.1f s simulated in %.2f s (%.0fx real time)\n",
-              result.log.Rows(), result.holds.size(), result.segments.size(),
-              result.stats.simulated_s, wall_s, result.stats.simulated_s / wall_s);
+               experiments::ExperimentName(scenario.type),
+               static_cast<unsigned long long>(options.seed), options.output_path.c_str());
+  std::fprintf(
+      out, "  %zu rows, %zu holds, %zu segments; %.1f s simulated in %.2f s (%.0fx real time)\n",
+      result.log.Rows(), result.holds.size(), result.segments.size(), result.stats.simulated_s,
+      wall_s, result.stats.simulated_s / wall_s);
   std::fprintf(out, "  CVODE: %ld steps, %ld right-hand sides, %ld contact events\n",
-              result.stats.integrator_steps, result.stats.rhs_evaluations,
-              result.stats.contact_events);
+               result.stats.integrator_steps, result.stats.rhs_evaluations,
+               result.stats.contact_events);
   if (!options.figure_path.empty()) {
     experiments::PlotExperiment(scenario, result, options.figure_path);
     std::fprintf(out, "  figure -> %s\n", options.figure_path.c_str());

@@ -76,12 +76,13 @@ TopicFile ReadTopic(const std::string& path, bool measured) {
       }
     }
     const double nanosec = v[1];
+    // builtin_interfaces/Time: sec an int32 (a uint32 in ROS 1), nanosec below 1e9.
     if (!(nanosec >= 0.0 && nanosec < 1e9 && std::floor(nanosec) == nanosec &&
-          std::floor(v[0]) == v[0])) {
+          std::floor(v[0]) == v[0] && v[0] >= -2147483648.0 && v[0] <= 4294967295.0)) {
       throw InputError(path, file.csv.rows[r].line, static_cast<std::size_t>(read[0]) + 1,
                        "header.stamp " + detail::NumberText(v[0]) + " s + " +
                            detail::NumberText(nanosec) + " ns is not a ROS time stamp",
-                       "sec and nanosec are whole numbers, nanosec below 1e9");
+                       "sec and nanosec are whole numbers, sec within 32 bits, nanosec below 1e9");
     }
     file.stamp_ns.push_back(static_cast<std::int64_t>(v[0]) * 1000000000 +
                             static_cast<std::int64_t>(nanosec));

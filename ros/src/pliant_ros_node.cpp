@@ -87,7 +87,8 @@ class PliantNode {
     sd.position = {out.sd_rad[0], out.sd_rad[1]};
     sd_.publish(sd);
     std_msgs::Float64 latency;
-    latency.data = std::chrono::duration<double>(std::chrono::steady_clock::now() - arrived).count();
+    latency.data =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - arrived).count();
     latency_.publish(latency);
     latencies_s_.push_back(latency.data);
   }

@@ -92,7 +92,7 @@ TEST(ImportRos2Csv, BadFilesAreNamedAtTheirLine) {
        "format named on stderr"},
       {kHeader + "10,2e9,0.1,0.2,0.12,0.3,0.4\n",
        ":2:1: header.stamp 10 s + 2e+09 ns is not a ROS time stamp — sec and nanosec are "
-       "whole numbers, nanosec below 1e9"},
+       "whole numbers, sec within 32 bits, nanosec below 1e9"},
       {"header.stamp.sec,header.stamp.nanosec,position.0,position.1,position.2\n10,5,0,0,0.1\n",
        ":1: missing column 'effort.0' of the ros2-csv format; columns found: header.stamp.sec, "
        "header.stamp.nanosec, position.0, position.1, position.2 — give the file as the "

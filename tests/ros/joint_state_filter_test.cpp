@@ -16,7 +16,8 @@
 namespace pliant::ros {
 namespace {
 
-const std::string kBag = PLIANT_SOURCE_DIR "/data/real/crtk-rosbag/pitch_exp_traj_01_test_cropped.bag";
+const std::string kBag =
+    PLIANT_SOURCE_DIR "/data/real/crtk-rosbag/pitch_exp_traj_01_test_cropped.bag";
 const std::string kParams = PLIANT_SOURCE_DIR "/data/paper.json";
 
 TEST(JointStateFilter, EveryMessageOfTheRealBagMatchesTheFilterOnItsLogToTheBit) {

@@ -32,7 +32,8 @@ namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-const std::string kBag = PLIANT_SOURCE_DIR "/data/real/crtk-rosbag/pitch_exp_traj_01_test_cropped.bag";
+const std::string kBag =
+    PLIANT_SOURCE_DIR "/data/real/crtk-rosbag/pitch_exp_traj_01_test_cropped.bag";
 const std::string kParams = PLIANT_SOURCE_DIR "/data/paper.json";
 
 // A TCP port nobody listens on now, on the loopback interface.
@@ -100,7 +101,8 @@ struct Received {
 
 TEST(PliantRosNode, CorrectsEveryMessageOfTheRealBagAsPliantFilterDoes) {
   for (const char* program : {"roscore", "rosbag"}) {
-    if (!OnPath(program)) GTEST_SKIP() << program << " not found (Debian: ros-core, python3-rosbag)";
+    if (!OnPath(program))
+      GTEST_SKIP() << program << " not found (Debian: ros-core, python3-rosbag)";
   }
   const fs::path dir = fs::path(::testing::TempDir()) / "pliant_ros_node";
   fs::remove_all(dir);

@@ -1,0 +1,82 @@
+// Identification from log files (docs/identification.md): the paper's
+// procedure or the joint smoother, as `pliant identify` runs them, with the
+// report `pliant identify --json` prints.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <pybind11/stl.h>
+
+#include "bindings.h"
+#include "pliant/estimation/identification_report.h"
+#include "pliant/estimation/joint_smoother.h"
+#include "pliant/io/input_error.h"
+#include "pliant/io/log_reader.h"
+
+namespace pliant::python {
+namespace {
+
+models::ComplianceForm LawNamed(const std::string& name) {
+  for (auto form : {models::ComplianceForm::kInverseCubic, models::ComplianceForm::kDirectCubic,
+                    models::ComplianceForm::kBeamSeries}) {
+    if (name == models::ComplianceFormName(form)) return form;
+  }
+  throw io::InputError("law", 0, 0, "unknown compliance law '" + name + "'",
+                       "use 'inverse_cubic', 'direct_cubic' or 'beam_series'");
+}
+
+py::tuple Identify(const std::vector<std::string>& logs, const std::string& method,
+                   const std::string& law, const std::optional<Parameters>& prior,
+                   int harmonics, bool skip_bad_rows) {
+  if (method != "paper" && method != "smoother") {
+    throw io::InputError("method", 0, 0, "unknown method '" + method + "'",
+                         "use 'paper' (the paper's procedure) or 'smoother' (Ceres, covariance)");
+  }
+  if (logs.empty()) {
+    throw io::InputError("logs", 0, 0, "no log given", "give at least one log file");
+  }
+  const models::ComplianceForm form = LawNamed(law);
+  estimation::IdentificationData data;
+  estimation::IdentificationResult result;
+  {
+    py::gil_scoped_release unlocked;
+    for (const auto& path : logs) {
+      estimation::AppendSamples(io::ReadLog(path, {skip_bad_rows}), path, {}, &data);
+    }
+    const auto& centre = prior ? *prior : estimation::PaperPrior();
+    if (method == "paper") {
+      estimation::PaperProcedureOptions options;
+      options.law = form;
+      result = estimation::RunPaperProcedure(data, centre, options);
+    } else {
+      estimation::JointSmootherOptions options;
+      options.law = form;
+      options.bias_harmonics = harmonics;
+      result = estimation::RunJointSmoother(data, centre, options);
+    }
+  }
+  result.parameters.description = "identified by pliant identify (" + result.method + ", " +
+                                  law + ") from " + std::to_string(logs.size()) + " log(s)";
+  const auto report =
+      estimation::IdentificationJson(result, data, estimation::CompareLaws(result));
+  return py::make_tuple(result.parameters, ToPython(report));
+}
+
+}  // namespace
+
+void BindIdentify(py::module_& m) {
+  m.def("identify", &Identify, py::arg("logs"), py::arg("method") = "smoother",
+        py::arg("law") = "inverse_cubic", py::arg("prior") = py::none(),
+        py::arg("harmonics") = 2, py::arg("skip_bad_rows") = false,
+        "Identifies compliance K(L) (rad/(N·m)), backlash δ (rad) and bias torque τ0(q) (N·m) "
+        "from log files, as `pliant identify` does (docs/identification.md).\n\n"
+        "logs: paths of canonical logs (free-tip rows feed the bias, tip_fixed rows the "
+        "compliance and backlash). method: 'smoother' (one Ceres problem, full covariance) or "
+        "'paper' (the paper's procedure). law: 'inverse_cubic', 'direct_cubic' or "
+        "'beam_series'. prior: Parameters the priors are centred on (default: the paper's). "
+        "harmonics: Fourier harmonics of the bias torque (smoother). Returns (Parameters, "
+        "report): the report is the dict `pliant identify --json` prints (each parameter ± σ, "
+        "K(L) at three depths, fit RMS, warnings).");
+}
+
+}  // namespace pliant::python
