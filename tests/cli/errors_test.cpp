@@ -378,7 +378,7 @@ INSTANTIATE_TEST_SUITE_P(
                   ("correct --params " + kParams + " --model magic in.csv -o out.csv"),
                   "--model: magic not in {paper,deadzone}"},
         UsageCase{"bad_method", "identify --method magic in.csv -o out.csv",
-                  "--method: magic not in {paper,smoother}"},
+                  "--method: magic not in {auto,paper,smoother,quasi_static}"},
         UsageCase{"out_of_range", "identify --harmonics 9 in.csv -o out.csv",
                   "--harmonics: Value 9 not in range 0 to 6"},
         UsageCase{"not_a_number", ("params " + kParams + " --depth abc"),
