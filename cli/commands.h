@@ -18,5 +18,6 @@ Command AddSimulateCommand(CLI::App& app);
 Command AddFilterCommand(CLI::App& app);
 Command AddDiagnoseCommand(CLI::App& app);
 Command AddMontecarloCommand(CLI::App& app);
+Command AddImportCommand(CLI::App& app);
 
 }  // namespace pliant::cli

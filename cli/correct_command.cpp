@@ -6,7 +6,10 @@
 
 #include "commands.h"
 #include "pliant/estimation/log_correction.h"
+#include "pliant/io/log_plausibility.h"
+#include "pliant/io/output_path.h"
 #include "pliant/io/parameters_json.h"
+#include "summary_stream.h"
 
 namespace pliant::cli {
 namespace {
@@ -20,9 +23,10 @@ struct CorrectOptions {
 };
 
 void PrintSummary(const CorrectOptions& options, const estimation::LogCorrectionSummary& s) {
-  std::printf("pliant correct: %zu rows, %s model -> %s\n", s.rows, options.model_name.c_str(),
+  std::FILE* out = SummaryStream(options.output_path);
+  std::fprintf(out, "pliant correct: %zu rows, %s model -> %s\n", s.rows, options.model_name.c_str(),
               options.output_path.c_str());
-  if (s.skipped_rows > 0) std::printf("  skipped %zu bad rows (--skip-bad-rows)\n", s.skipped_rows);
+  if (s.skipped_rows > 0) std::fprintf(out, "  skipped %zu bad rows (--skip-bad-rows)\n", s.skipped_rows);
   if (s.depth_clamped_rows > 0) {
     std::fprintf(stderr,
                  "warning: %zu rows have an insertion depth outside the parameters' valid range; "
@@ -30,16 +34,18 @@ void PrintSummary(const CorrectOptions& options, const estimation::LogCorrection
                  s.depth_clamped_rows);
   }
   if (s.reference.empty() || s.corrected.count() == 0) return;
-  std::printf("  tip error against %s over %zu rows:\n", s.reference.c_str(), s.corrected.count());
-  std::printf("    %-20s RMS %7.3f mm   max %7.3f mm\n", "uncorrected", s.uncorrected.RmsMm(),
+  std::fprintf(out, "  tip error against %s over %zu rows:\n", s.reference.c_str(), s.corrected.count());
+  std::fprintf(out, "    %-20s RMS %7.3f mm   max %7.3f mm\n", "uncorrected", s.uncorrected.RmsMm(),
               s.uncorrected.MaxMm());
   const std::string label = "corrected (" + options.model_name + ")";
-  std::printf("    %-20s RMS %7.3f mm   max %7.3f mm\n", label.c_str(), s.corrected.RmsMm(),
+  std::fprintf(out, "    %-20s RMS %7.3f mm   max %7.3f mm\n", label.c_str(), s.corrected.RmsMm(),
               s.corrected.MaxMm());
 }
 
 void RunCorrect(const CorrectOptions& options) {
+  io::CheckOutputFile(options.output_path, "-o");
   const auto parameters = io::ReadParameters(options.params_path);
+  io::CheckLogPlausibilityAndWarn(options.input_path, {options.skip_bad_rows});
   const estimation::ComplianceCorrector corrector(
       parameters, *estimation::ParseCorrectionModel(options.model_name));
   const auto summary = estimation::CorrectLog(

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -12,9 +13,13 @@
 #include "pliant/estimation/diagnosis.h"
 #include "pliant/estimation/effect_catalogue.h"
 #include "pliant/experiments/diagnosis_report.h"
+#include "pliant/io/atomic_file.h"
 #include "pliant/io/input_error.h"
 #include "pliant/io/log_reader.h"
+#include "pliant/io/log_plausibility.h"
+#include "pliant/io/output_path.h"
 #include "pliant/io/parameters_json.h"
+#include "pliant/io/progress.h"
 
 namespace pliant::cli {
 namespace {
@@ -72,17 +77,23 @@ void RunDiagnose(DiagnoseCommandOptions o) {
   CheckEffectNames(o.diagnose.added_effects, "--add");
   CheckEffectNames(o.diagnose.candidates, "--candidate");
   if (o.report_dir.empty()) {
-    o.report_dir = std::filesystem::path(o.log_path).stem().string() + "_diagnosis";
+    const bool piped = o.log_path == io::kStandardStream;
+    o.report_dir =
+        (piped ? "stdin" : std::filesystem::path(o.log_path).stem().string()) + "_diagnosis";
   }
   if (std::filesystem::exists(o.report_dir) && !std::filesystem::is_directory(o.report_dir)) {
     throw io::InputError(o.report_dir, 0, 0, "is a file, and the report is a directory",
                          "give -o a directory name (it is created if missing)");
   }
+  io::CheckOutputDirectory(o.report_dir, "-o");
   const auto parameters = io::ReadParameters(o.params_path);
+  io::CheckLogPlausibilityAndWarn(o.log_path);
+  std::optional<io::Progress> progress(std::in_place, "pliant diagnose");
   const io::Log log = io::ReadLog(o.log_path);
   const auto diagnosis = estimation::Diagnose(log, o.log_path, parameters, o.diagnose);
   const auto files =
       experiments::WriteDiagnosisReport(o.report_dir, log, diagnosis, {o.log_path, o.params_path});
+  progress.reset();  // the line is erased before the summary
   if (!o.json) return PrintHuman(diagnosis, files.html);
   auto summary = experiments::DiagnosisSummaryJson(diagnosis);
   summary["report"] = files.html;
@@ -117,7 +128,7 @@ Command AddDiagnoseCommand(CLI::App& app) {
   sub->add_option("--max-lag", o->diagnose.max_lag_samples,
                   "Residual-channel correlation over ± this many samples")
       ->capture_default_str()
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Range(0, 100000));
   sub->add_option("--folds", o->diagnose.folds, "Cross-validation folds, by segment")
       ->capture_default_str()
       ->check(CLI::Range(2, 100));

@@ -3,13 +3,18 @@
 #include <cstdint>
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 
 #include "commands.h"
 #include "pliant/estimation/filter_log.h"
 #include "pliant/io/input_error.h"
+#include "pliant/io/log_plausibility.h"
+#include "pliant/io/output_path.h"
 #include "pliant/io/parameters_json.h"
+#include "pliant/io/progress.h"
+#include "summary_stream.h"
 
 namespace pliant::cli {
 namespace {
@@ -24,17 +29,18 @@ struct FilterCommandOptions {
   bool effort_offset_given = false;
 };
 
-void PrintAccuracy(const char* label, const estimation::TipErrorStatistics& s) {
-  std::printf("    %-20s RMS %7.3f mm   max %7.3f mm\n", label, s.RmsMm(), s.MaxMm());
+void PrintAccuracy(std::FILE* out, const char* label, const estimation::TipErrorStatistics& s) {
+  std::fprintf(out, "    %-20s RMS %7.3f mm   max %7.3f mm\n", label, s.RmsMm(), s.MaxMm());
 }
 
 void PrintSummary(const FilterCommandOptions& o, const estimation::LogFilterSummary& s) {
-  std::printf("pliant filter: %zu rows%s -> %s\n", s.rows, s.smoothed ? ", RTS smoothed" : "",
+  std::FILE* out = SummaryStream(o.output_path);
+  std::fprintf(out, "pliant filter: %zu rows%s -> %s\n", s.rows, s.smoothed ? ", RTS smoothed" : "",
               o.output_path.c_str());
-  if (s.skipped_rows > 0) std::printf("  skipped %zu bad rows (--skip-bad-rows)\n", s.skipped_rows);
-  std::printf("  mean NIS per measurement %.3f (1 when the noise model is right)\n",
+  if (s.skipped_rows > 0) std::fprintf(out, "  skipped %zu bad rows (--skip-bad-rows)\n", s.skipped_rows);
+  std::fprintf(out, "  mean NIS per measurement %.3f (1 when the noise model is right)\n",
               s.mean_nis_per_dof);
-  std::printf("  rows flagged: rejected %zu, missing %zu, depth out of range %zu, "
+  std::fprintf(out, "  rows flagged: rejected %zu, missing %zu, depth out of range %zu, "
               "effort saturated %zu, model mismatch %zu\n",
               s.rejected_rows, s.missing_rows, s.depth_out_of_range_rows, s.saturated_rows,
               s.mismatch_rows);
@@ -45,10 +51,10 @@ void PrintSummary(const FilterCommandOptions& o, const estimation::LogFilterSumm
                  s.depth_out_of_range_rows);
   }
   if (s.reference.empty() || s.filtered.count() == 0) return;
-  std::printf("  tip error against %s over %zu rows:\n", s.reference.c_str(), s.filtered.count());
-  PrintAccuracy("uncorrected", s.uncorrected);
-  PrintAccuracy("filter", s.filtered);
-  if (s.smoothed) PrintAccuracy("smoother", s.smoothed_error);
+  std::fprintf(out, "  tip error against %s over %zu rows:\n", s.reference.c_str(), s.filtered.count());
+  PrintAccuracy(out, "uncorrected", s.uncorrected);
+  PrintAccuracy(out, "filter", s.filtered);
+  if (s.smoothed) PrintAccuracy(out, "smoother", s.smoothed_error);
 }
 
 // FilterOptions::IsValid names the C++ field ("FilterOptions::gate_probability = 1.5 must
@@ -75,18 +81,37 @@ io::InputError OptionError(const std::string& error) {
   return io::InputError(option, 0, 0, problem, fix);
 }
 
+// The unloaded start must leave loaded rows to correct: a window as long as
+// the log would take every push for rest.
+void CheckUnloadedStart(double unloaded_start_s, double duration_s) {
+  if (unloaded_start_s > 0.0 && unloaded_start_s >= duration_s) {
+    char problem[160];
+    std::snprintf(problem, sizeof problem,
+                  "unloaded_start_s = %g s is not shorter than the log, which lasts %g s",
+                  unloaded_start_s, duration_s);
+    throw io::InputError("--unloaded-start", 0, 0, problem,
+                         "give the seconds at the log's start with the instrument untouched and "
+                         "the arm still, e.g. 0.1, or 0 for none");
+  }
+}
+
 void RunFilter(FilterCommandOptions o) {
   // A tare needs an offset to learn: unless told its σ, β is on, its σ the
   // parameters' (filter.h: NaN), as --effort-offset-sd nan would ask.
   if (o.filter.unloaded_start_s > 0.0 && !o.effort_offset_given) {
     o.filter.effort_offset_sd_nm.setConstant(estimation::FilterOptions::kFromParameters);
   }
+  io::CheckOutputFile(o.output_path, "-o");
   const auto parameters = io::ReadParameters(o.params_path);
   std::string error;
   if (!o.filter.IsValid(&error)) throw OptionError(error);
+  const auto log = io::CheckLogPlausibilityAndWarn(o.input_path, {o.skip_bad_rows});
+  CheckUnloadedStart(o.filter.unloaded_start_s, log.DurationS());
+  std::optional<io::Progress> progress(std::in_place, "pliant filter");
   const auto summary =
       estimation::FilterLog(o.input_path, o.output_path, parameters, o.filter, o.smooth,
                             "pliant filter, parameters " + o.params_path, {o.skip_bad_rows});
+  progress.reset();  // the line is erased before the summary
   PrintSummary(o, summary);
 }
 

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -12,7 +13,11 @@
 #include "pliant/experiments/plot.h"
 #include "pliant/io/input_error.h"
 #include "pliant/io/log_reader.h"
+#include "pliant/io/log_plausibility.h"
+#include "pliant/io/output_path.h"
 #include "pliant/io/parameters_json.h"
+#include "pliant/io/progress.h"
+#include "summary_stream.h"
 
 namespace pliant::cli {
 namespace {
@@ -64,36 +69,71 @@ void DrawFigure(const estimation::IdentificationResult& r, const std::string& pa
   experiments::WriteFigure(figure, path);
 }
 
+// Parameters the smoother cannot make usable (K outside its physical band, a
+// cubic crossing zero) come from logs that do not determine them: bad input
+// (exit 2), with what to record instead.
+estimation::IdentificationResult RunSmootherOn(const estimation::IdentificationData& data,
+                                               const models::ModelParameters& prior,
+                                               const estimation::JointSmootherOptions& smoother,
+                                               const std::vector<std::string>& logs) {
+  try {
+    return estimation::RunJointSmoother(data, prior, smoother);
+  } catch (const std::runtime_error& e) {
+    const std::string what = e.what();
+    const std::string prefix = "the identified parameters are not usable (";
+    if (what.rfind(prefix, 0) != 0) throw;
+    std::string files;
+    for (const auto& log : logs) files += (files.empty() ? "" : ", ") + log;
+    throw io::InputError(files, 0, 0,
+                         "these logs do not determine the parameters: the fit gives " +
+                             what.substr(prefix.size(), what.rfind(')') - prefix.size()),
+                         "identify from a clamped-beam log over several depths (and a bias "
+                         "sweep), or try another --model law");
+  }
+}
+
+// The fit, with its progress (elapsed time: Ceres gives no share done).
+estimation::IdentificationResult Fit(const IdentifyOptions& options,
+                                     const estimation::IdentificationData& data,
+                                     const models::ModelParameters& prior) {
+  io::Progress progress("pliant identify: " + options.method + " fit");
+  if (options.method == "paper") {
+    estimation::PaperProcedureOptions paper;
+    paper.law = LawOf(options.law);
+    return estimation::RunPaperProcedure(data, prior, paper);
+  }
+  estimation::JointSmootherOptions smoother;
+  smoother.law = LawOf(options.law);
+  smoother.bias_harmonics = options.harmonics;
+  return RunSmootherOn(data, prior, smoother, options.logs);
+}
+
 void RunIdentify(const IdentifyOptions& options) {
+  io::CheckOutputFile(options.output_path, "-o");
+  io::CheckOutputFile(options.figure_path, "--figure");
+  const models::ModelParameters prior =
+      options.prior_path.empty() ? estimation::PaperPrior() : io::ReadParameters(options.prior_path);
+  for (const auto& path : options.logs) {
+    io::CheckLogPlausibilityAndWarn(path, {options.skip_bad_rows});
+  }
   estimation::IdentificationData data;
   for (const auto& path : options.logs) {
     estimation::AppendSamples(io::ReadLog(path, {options.skip_bad_rows}), path, {}, &data);
   }
-  const models::ModelParameters prior =
-      options.prior_path.empty() ? estimation::PaperPrior() : io::ReadParameters(options.prior_path);
-  estimation::IdentificationResult result;
-  if (options.method == "paper") {
-    estimation::PaperProcedureOptions paper;
-    paper.law = LawOf(options.law);
-    result = estimation::RunPaperProcedure(data, prior, paper);
-  } else {
-    estimation::JointSmootherOptions smoother;
-    smoother.law = LawOf(options.law);
-    smoother.bias_harmonics = options.harmonics;
-    result = estimation::RunJointSmoother(data, prior, smoother);
-  }
+  estimation::IdentificationResult result = Fit(options, data, prior);
   result.parameters.description = "identified by pliant identify (" + result.method + ", " +
                                    options.law + ") from " + std::to_string(options.logs.size()) +
                                    " log(s)";
   io::WriteParameters(options.output_path, result.parameters);
+  std::FILE* out = SummaryStream(options.output_path);
   const auto laws = estimation::CompareLaws(result);
   if (options.json) {
     auto json = estimation::IdentificationJson(result, data, laws);
     json["output"] = options.output_path;
-    std::printf("%s\n", json.dump(2).c_str());
+    std::fprintf(out, "%s\n", json.dump(2).c_str());
   } else {
-    std::printf("pliant identify: %s", estimation::IdentificationTable(result, data, laws).c_str());
-    std::printf("  wrote %s\n", options.output_path.c_str());
+    std::fprintf(out, "pliant identify: %s", estimation::IdentificationTable(result, data, laws).c_str());
+    std::fprintf(out, "  wrote %s\n", options.output_path.c_str());
   }
   for (const auto& w : result.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
   if (!options.figure_path.empty()) DrawFigure(result, options.figure_path);

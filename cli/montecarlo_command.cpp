@@ -9,6 +9,7 @@
 #include "montecarlo_mpi.h"
 #include "pliant/experiments/montecarlo.h"
 #include "pliant/experiments/study.h"
+#include "pliant/io/output_path.h"
 
 namespace pliant::cli {
 namespace {
@@ -45,6 +46,7 @@ void PrintSummary(const nlohmann::json& s, const std::string& dir) {
 }
 
 void RunMontecarloCommand(const MontecarloCommandOptions& options) {
+  io::CheckOutputDirectory(options.run.output_dir, "-o");
   const auto study = experiments::ReadStudy(options.study_path);
   const bool mpi = LaunchedByMpirun();
   const auto summary = mpi ? RunMontecarloMpi(study, options.run)

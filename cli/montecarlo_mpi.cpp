@@ -14,6 +14,7 @@
 
 #include "montecarlo_mpi.h"
 #include "pliant/io/input_error.h"
+#include "pliant/io/progress.h"
 
 namespace pliant::cli {
 namespace {
@@ -78,14 +79,15 @@ nlohmann::json RunMontecarloMpi(const experiments::Study& study,
   }
 
   std::mutex mutex;  // the file and the bar, shared by rank 0's workers and its receiver
-  experiments::Progress progress(trials, trials - static_cast<int>(pending.size()));
+  io::Progress progress("pliant montecarlo", "trials", trials);
+  progress.Set(trials - static_cast<double>(pending.size()));
   std::exception_ptr own_failure;
   std::thread workers([&] {
     try {
       experiments::RunTrials(study, mine, threads, [&](const TrialResult& r) {
         const std::lock_guard<std::mutex> lock(mutex);
         file->Append(r);
-        progress.Tick();
+        progress.Add();
       });
     } catch (...) {
       own_failure = std::current_exception();
@@ -111,7 +113,7 @@ nlohmann::json RunMontecarloMpi(const experiments::Study& study,
     }
     const auto row = experiments::ParseTrialRow(message);
     const std::lock_guard<std::mutex> lock(mutex);
-    if (row) file->Append(*row), progress.Tick();
+    if (row) file->Append(*row), progress.Add();
   }
   workers.join();
   if (own_failure) std::rethrow_exception(own_failure);

@@ -1,6 +1,8 @@
 // The paper's procedure (sections 3–5), step by step, with the uncertainty of
 // every step carried to the parameters.
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <stdexcept>
 
@@ -106,6 +108,7 @@ IdentificationResult RunPaperProcedure(const IdentificationData& data,
   const detail::BranchClassifier branches(data, p, options.contact_threshold_nm);
 
   std::vector<std::string> names;
+  std::vector<std::string> clamped_backlash;  // warnings for a crossed pair of branch lines
   std::vector<std::pair<std::vector<int>, Eigen::MatrixXd>> blocks;
   for (int j = 0; j < 2; ++j) {
     // Per log and depth (one clamp): the two branches' (position, effort)
@@ -175,7 +178,17 @@ IdentificationResult RunPaperProcedure(const IdentificationData& data,
       double mean = 0.0, var = 0.0, mean_var = 0.0;
       for (std::size_t k = 0; k < deltas.size(); ++k) mean += deltas[k] / n, mean_var += delta_vars[k] / (n * n);
       for (double d : deltas) var += (d - mean) * (d - mean) / std::max(1.0, n - 1.0);
-      joint.backlash_rad = mean;
+      joint.backlash_rad = std::max(0.0, mean);  // a clearance is >= 0: crossed lines say 0
+      if (mean < 0.0) {
+        char text[320];
+        std::snprintf(text, sizeof text,
+                      "joint %d: the loading and unloading lines cross (half their gap %.3g ± "
+                      "%.2g rad over %zu depths): a clearance cannot be negative, so delta%d is "
+                      "written as 0; these data do not resolve it (push further both ways, or "
+                      "use --method smoother)",
+                      j + 1, mean, std::sqrt(std::max(var / n, mean_var)), deltas.size(), j + 1);
+        clamped_backlash.push_back(text);
+      }
       joint.sources["backlash_rad"] = "pliant identify (paper): half the gap between the branch lines, mean of " +
                                       std::to_string(deltas.size()) + " depths";
       names.push_back("joint" + std::to_string(j + 1) + ".backlash_rad");
@@ -197,6 +210,7 @@ IdentificationResult RunPaperProcedure(const IdentificationData& data,
   }
   result.warnings = IdentifiabilityWarnings(data, p, options,
                                             options.law == models::ComplianceForm::kBeamSeries ? 3 : 4);
+  result.warnings.insert(result.warnings.end(), clamped_backlash.begin(), clamped_backlash.end());
   result.report = "paper procedure: " + std::to_string(result.depth_estimates.size()) +
                   " depth lines, closed-form least squares";
   result.seconds = detail::SecondsSince(start);

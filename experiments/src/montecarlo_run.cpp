@@ -1,7 +1,5 @@
 // Running a study on one machine: a pool of threads over trial indices, a
-// progress bar, and the outputs written when every trial is in.
-#include <unistd.h>
-
+// progress bar (io::Progress), and the outputs written when every trial is in.
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -12,18 +10,9 @@
 
 #include "pliant/experiments/montecarlo.h"
 #include "pliant/io/atomic_file.h"
+#include "pliant/io/progress.h"
 
 namespace pliant::experiments {
-namespace {
-
-std::string Clock(double seconds) {
-  const long s = std::lround(seconds);
-  char text[32];
-  std::snprintf(text, sizeof text, "%ld:%02ld:%02ld", s / 3600, s / 60 % 60, s % 60);
-  return text;
-}
-
-}  // namespace
 
 double Now() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
@@ -36,31 +25,6 @@ nlohmann::json TimingJson(int threads, int ranks, int trials, std::size_t trials
           {"trials_run", trials_run},
           {"wall_s", wall_s},
           {"seconds_per_trial", trials_run ? wall_s / trials_run : 0.0}};
-}
-
-Progress::Progress(int total, int already_done)
-    : total_(total), done_(already_done), started_with_(already_done), start_s_(Now()),
-      terminal_(isatty(STDERR_FILENO) != 0) {}
-
-Progress::~Progress() {
-  if (terminal_ && last_draw_s_ >= 0.0) std::fputc('\n', stderr);
-}
-
-void Progress::Tick() {
-  ++done_;
-  if (!terminal_) return;
-  const double now = Now();
-  if (done_ < total_ && now - last_draw_s_ < 0.2) return;  // redraw at most 5 times a second
-  last_draw_s_ = now;
-  const double elapsed = now - start_s_;
-  const int run = done_ - started_with_;
-  const double eta = run > 0 ? elapsed / run * (total_ - done_) : 0.0;
-  constexpr int kWidth = 30;
-  const int filled = total_ ? kWidth * done_ / total_ : kWidth;
-  std::fprintf(stderr, "\r[%s%s] %d/%d trials  %s elapsed  ETA %s ",
-               std::string(filled, '#').c_str(), std::string(kWidth - filled, ' ').c_str(), done_,
-               total_, Clock(elapsed).c_str(), Clock(eta).c_str());
-  std::fflush(stderr);
 }
 
 void RunTrials(const Study& study, const std::vector<int>& trials, int threads,
@@ -120,10 +84,11 @@ nlohmann::json RunMontecarlo(const Study& study, const MontecarloOptions& option
                           : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   const double start = Now();
   {
-    Progress progress(trials, trials - static_cast<int>(pending.size()));
+    io::Progress progress("pliant montecarlo", "trials", trials);
+    progress.Set(trials - static_cast<double>(pending.size()));
     RunTrials(study, pending, threads, [&](const TrialResult& r) {
       file.Append(r);
-      progress.Tick();
+      progress.Add();
     });
   }
   const auto timing = TimingJson(threads, 1, trials, pending.size(), Now() - start);

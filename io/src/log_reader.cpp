@@ -1,6 +1,7 @@
 #include "pliant/io/log_reader.h"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -11,6 +12,8 @@
 #include <limits>
 
 #include "log_text.h"
+#include "pliant/io/atomic_file.h"
+#include "pliant/io/progress.h"
 #include "number_text.h"
 
 namespace pliant::io {
@@ -40,6 +43,8 @@ struct LogReader::Buffer {
   std::vector<char> data;
   std::size_t begin = 0, end = 0;
   bool eof = false;
+  std::size_t bytes_read = 0;
+  std::unique_ptr<Progress> progress;  ///< only while reading, and only on a terminal
   ~Buffer() {
     if (fd >= 0) ::close(fd);
   }
@@ -48,12 +53,29 @@ struct LogReader::Buffer {
 LogReader::LogReader(std::string path, LogReaderOptions options)
     : path_(std::move(path)), options_(options), buffer_(std::make_unique<Buffer>()) {
   buffer_->data.resize(std::max<std::size_t>(options_.chunk_bytes, 2));
-  buffer_->fd = ::open(path_.c_str(), O_RDONLY | O_CLOEXEC);
+  // "-" is standard input, named <stdin> in messages.
+  const bool standard_input = path_ == kStandardStream;
+  if (standard_input) path_ = "<stdin>";
+  buffer_->fd = standard_input ? ::fcntl(STDIN_FILENO, F_DUPFD_CLOEXEC, 0)
+                               : ::open(path_.c_str(), O_RDONLY | O_CLOEXEC);
   if (buffer_->fd < 0) {
     Fail(0, std::string("cannot open the log (") + std::strerror(errno) + ")",
          "check the path and that the file is readable");
   }
+  ShowProgress();
   ReadHeader();
+  tip_fixed_column_ = header_.Index("tip_fixed");
+  segment_column_ = header_.Index("segment");
+  PeekFirstRow();
+}
+
+// Megabytes read, of the file's size when it has one (a pipe has not).
+void LogReader::ShowProgress() {
+  if (!Progress::Enabled()) return;
+  struct stat status {};
+  const bool sized = ::fstat(buffer_->fd, &status) == 0 && S_ISREG(status.st_mode);
+  buffer_->progress = std::make_unique<Progress>(
+      "reading " + path_, "MB", sized ? static_cast<double>(status.st_size) / 1e6 : 0.0);
 }
 
 LogReader::~LogReader() = default;
@@ -90,14 +112,16 @@ bool LogReader::ReadLine(std::string_view& line) {
     }
     if (got == 0) b.eof = true;
     b.end += static_cast<std::size_t>(got);
+    b.bytes_read += static_cast<std::size_t>(got);
+    if (b.progress) b.progress->Set(static_cast<double>(b.bytes_read) / 1e6);
+    if (b.eof) b.progress.reset();  // erases the line
   }
 }
 
 const double* LogReader::Next() {
   if (finished_) return nullptr;
   std::string_view line;
-  while (ReadLine(line)) {
-    ++line_;
+  while (TakeLine(line)) {
     if (Trim(line).empty()) continue;  // blank lines (e.g. a doubled final newline)
     if (ParseRow(line)) {
       ++rows_;
@@ -118,17 +142,29 @@ const double* LogReader::Next() {
   return nullptr;
 }
 
+// The row PeekFirstRow read ahead comes first; line_ already counts it.
+bool LogReader::TakeLine(std::string_view& line) {
+  if (has_pending_) {
+    has_pending_ = false;
+    line = pending_line_;
+    return true;
+  }
+  if (!ReadLine(line)) return false;
+  ++line_;
+  return true;
+}
+
 void LogReader::FailFieldCount(std::size_t fields) const {
   Fail(0,
        "row has " + std::to_string(fields) + (fields == 1 ? " field" : " fields") +
-           " but the header has " + std::to_string(row_.size()) + " columns",
+           " but the header has " + std::to_string(file_columns_) + " columns",
        "every row needs one value per header column; look for a missing or extra comma");
 }
 
 bool LogReader::ParseRow(std::string_view line) {
   const char* p = line.data();
   const char* const end = p + line.size();
-  const std::size_t columns = row_.size();
+  const std::size_t columns = file_columns_;
   std::size_t bad_column = 0;  // first required column without a finite value, from 1
   std::string_view bad_text;
   for (std::size_t c = 0; c < columns; ++c) {
@@ -184,8 +220,53 @@ bool LogReader::ParseRow(std::string_view line) {
              (bad_text.empty() ? std::string("no value") : Quote(bad_text)),
          kRequiredFix);
   }
+  CheckUnrecordedJointsEmpty();
   CheckRanges();
+  CheckTipFixedAndSegment();
   return true;
+}
+
+// tip_fixed is a flag and segment a count: 2, 0.5 or 2.5 are typing or
+// alignment mistakes that would otherwise be read as "not held" or cut a
+// segment in two. An empty field (NaN) means unknown and is allowed.
+void LogReader::CheckTipFixedAndSegment() const {
+  if (tip_fixed_column_ >= 0) {
+    const double flag = row_[static_cast<std::size_t>(tip_fixed_column_)];
+    if (!std::isnan(flag) && flag != 0.0 && flag != 1.0) {
+      Fail(static_cast<std::size_t>(tip_fixed_column_) + 1,
+           "tip_fixed = " + detail::NumberText(flag) + " is neither 0 nor 1",
+           "write 1 on rows where the tip is held still (clamped or in a divot) and 0 elsewhere");
+    }
+  }
+  if (segment_column_ >= 0) {
+    const double segment = row_[static_cast<std::size_t>(segment_column_)];
+    if (!std::isnan(segment) && segment != std::floor(segment)) {
+      Fail(static_cast<std::size_t>(segment_column_) + 1,
+           "segment = " + detail::NumberText(segment) + " is not a whole number",
+           "number the segments 0, 1, 2, … and give every row its segment's number");
+    }
+  }
+}
+
+// A joint that the first row left empty stays empty: a value appearing later means
+// the rows are misaligned, or the joint was recorded after all.
+void LogReader::CheckUnrecordedJointsEmpty() const {
+  for (int j = 0; j < 2; ++j) {
+    if (header_.joint_recorded[static_cast<std::size_t>(j)]) continue;
+    for (int r : {kQ1 + j, kTau1 + j}) {
+      const auto column = static_cast<std::size_t>(required_[r]);
+      if (column < file_columns_ && !std::isnan(row_[column])) {
+        const std::string name(kRequiredColumns[static_cast<std::size_t>(r)]);
+        Fail(column + 1,
+             "joint " + std::to_string(j + 1) + " is not recorded (q" + std::to_string(j + 1) +
+                 " and tau" + std::to_string(j + 1) + " are empty in the first data row) but " +
+                 name + " holds " + detail::NumberText(row_[column]) + " here",
+             "give q" + std::to_string(j + 1) + " and tau" + std::to_string(j + 1) +
+                 " on every row, or leave both empty on every row of a log that records one "
+                 "joint");
+      }
+    }
+  }
 }
 
 // Unit mistakes (degrees, millimetres, mN·m) are the common failures of real

@@ -2,6 +2,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -279,7 +280,12 @@ models::ModelParameters ParseParameters(const std::string& text, const std::stri
   return parameters;
 }
 
-models::ModelParameters ReadParameters(const std::string& path) {
+std::string ReadParametersText(const std::string& path) {
+  std::error_code ignored;
+  if (std::filesystem::is_directory(path, ignored)) {
+    throw InputError(path, 0, 0, "is a directory, not a parameters file",
+                     "give the path of a .json file; data/paper.json is a complete example");
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) {
     throw InputError(path, 0, 0,
@@ -288,7 +294,11 @@ models::ModelParameters ReadParameters(const std::string& path) {
   }
   std::ostringstream text;
   text << in.rdbuf();
-  return ParseParameters(text.str(), path);
+  return text.str();
+}
+
+models::ModelParameters ReadParameters(const std::string& path) {
+  return ParseParameters(ReadParametersText(path), path);
 }
 
 }  // namespace pliant::io

@@ -58,6 +58,41 @@ std::string ValidateTable(const BiasTorqueTable& table) {
   return {};
 }
 
+// Physical bounds, so that a typo (1e308) cannot pass as K = 0 or a bias of
+// 1e308 N·m. A PSM instrument's K is 0.03–0.1 rad/(N·m) (the paper's eqs. 3–4);
+// the band allows a factor of ~300 stiffer and 10 softer. Efforts beyond
+// ±10 N·m are beyond what the PSM's joints 1–2 exert (ftmax 3.3 N·m).
+constexpr double kComplianceMinRadPerNm = 1e-4;
+constexpr double kComplianceMaxRadPerNm = 1.0;
+constexpr double kBiasMaxNm = 10.0;
+
+std::string ValidateMagnitudes(const JointParameters& joint) {
+  std::ostringstream why;
+  for (int i = 0; i <= 30; ++i) {
+    const double depth = joint.depth_min_m + (joint.depth_max_m - joint.depth_min_m) * i / 30.0;
+    const double k = EvaluateCompliance(joint.compliance.form,
+                                        joint.compliance.cubic.coefficients.data(), depth);
+    if (!(k >= kComplianceMinRadPerNm && k <= kComplianceMaxRadPerNm)) {
+      why << "the compliance law gives K = " << k << " rad/(N·m) at L = " << depth
+          << " m; it must lie within [" << kComplianceMinRadPerNm << ", "
+          << kComplianceMaxRadPerNm
+          << "] rad/(N·m) on the valid depth range (a PSM instrument's is 0.03–0.1)";
+      return why.str();
+    }
+  }
+  const std::vector<double>& torques = joint.bias_form == BiasForm::kFourier
+                                           ? joint.bias_fourier.coefficients
+                                           : joint.bias_torque.torque_nm;
+  for (double v : torques) {
+    if (!(std::abs(v) <= kBiasMaxNm)) {
+      why << "bias_torque holds " << v << " N·m; its values must lie within ±" << kBiasMaxNm
+          << " N·m (the PSM's joints 1–2 exert at most 3.3 N·m)";
+      return why.str();
+    }
+  }
+  return {};
+}
+
 std::string ValidateJoint(const JointParameters& joint) {
   std::ostringstream why;
   const std::string bias = joint.bias_form == BiasForm::kFourier
@@ -77,7 +112,10 @@ std::string ValidateJoint(const JointParameters& joint) {
   if (!(joint.deadzone_width_nm > 0.0 && joint.deadzone_width_nm < 10.0)) {
     return "deadzone_width_nm must be in (0, 10) N·m";
   }
-  if (joint.compliance.form == ComplianceForm::kBeamSeries) return ValidateBeamSeries(joint);
+  if (joint.compliance.form == ComplianceForm::kBeamSeries) {
+    const std::string beam = ValidateBeamSeries(joint);
+    return beam.empty() ? ValidateMagnitudes(joint) : beam;
+  }
   const double minimum = joint.compliance.cubic.MinimumOn(joint.depth_min_m, joint.depth_max_m);
   if (!(minimum > 0.0)) {
     why << "the compliance cubic reaches " << minimum << " on the valid depth range ["
@@ -85,7 +123,7 @@ std::string ValidateJoint(const JointParameters& joint) {
         << "] m; it must stay positive there (narrow depth_range_m or refit)";
     return why.str();
   }
-  return {};
+  return ValidateMagnitudes(joint);
 }
 
 }  // namespace

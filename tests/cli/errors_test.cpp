@@ -390,33 +390,36 @@ INSTANTIATE_TEST_SUITE_P(
 
 // ----------------------------------------------------------- runtime (exit 1)
 
-TEST(RuntimeError, AMissingOutputDirectoryExitsOne) {
+// The destination is checked before any work: a missing directory or an
+// output that is a directory is bad usage (exit 2), said before a single row is read.
+TEST(OutputError, AMissingOutputDirectoryExitsTwoBeforeAnyWork) {
   const auto dir = FreshDirectory("errors_runtime_directory");
   WriteText(dir / "in.csv", kGoodLog);
   const fs::path output = dir / "no" / "such" / "out.csv";
   const auto r = RunCommand(kCli + " correct --params " + kParams + " " + Quoted(dir / "in.csv") +
                                 " -o " + Quoted(output),
                             dir);
-  EXPECT_EQ(r.exit_code, 1) << r.err;
-  EXPECT_EQ(r.err, "pliant: cannot create a temporary file to write " + output.string() +
-                       ": No such file or directory\n");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  const std::string missing = (dir / "no" / "such").string();
+  EXPECT_EQ(r.err, "-o " + output.string() + ": the directory " + missing +
+                       " does not exist \u2014 create it first (mkdir -p " + missing +
+                       ") or write elsewhere\n");
   EXPECT_FALSE(fs::exists(dir / "no"));
 }
 
-TEST(RuntimeError, AnOutputThatIsADirectoryExitsOneAndLeavesNoTemporary) {
+TEST(OutputError, AnOutputThatIsADirectoryExitsTwoAndLeavesItAlone) {
   const auto dir = FreshDirectory("errors_runtime_replace");
   WriteText(dir / "in.csv", kGoodLog);
   fs::create_directories(dir / "out.csv");
   const auto r = RunCommand(kCli + " correct --params " + kParams + " " + Quoted(dir / "in.csv") +
                                 " -o " + Quoted(dir / "out.csv"),
                             dir);
-  EXPECT_EQ(r.exit_code, 1) << r.err;
-  EXPECT_EQ(r.err, "pliant: cannot replace " + (dir / "out.csv").string() + ": Is a directory\n");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  const std::string out = (dir / "out.csv").string();
+  EXPECT_EQ(r.err, "-o " + out + ": is a directory \u2014 give a file name (e.g. " + out +
+                       "/out)\n");
   EXPECT_TRUE(fs::is_directory(dir / "out.csv"));
   EXPECT_TRUE(fs::is_empty(dir / "out.csv"));
-  for (const auto& entry : fs::directory_iterator(dir)) {
-    EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << entry.path();
-  }
 }
 
 // The figure is drawn after the output is complete: a figure failure exits 1

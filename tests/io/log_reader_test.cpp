@@ -219,6 +219,46 @@ TEST_F(LogReaderTest, SkipBadRowsDropsAndCountsThemWithoutMovingTheTimeBaseline)
             "finite values in t, q1, q2, q3, tau1 and tau2");
 }
 
+TEST_F(LogReaderTest, AJointLeftOutOfTheHeaderIsReadAsNotRecorded) {
+  const Log log = Read("# timing: quasi-static\nt,q1,q3,tau1,tau1_bias\n0,0.01,0.1,0.5,0.1\n"
+                       "1,0.02,0.1,0.6,0.1\n");
+  EXPECT_TRUE(log.header.JointRecorded(1));
+  EXPECT_FALSE(log.header.JointRecorded(2));
+  EXPECT_TRUE(log.header.QuasiStatic());
+  // The absent joint's columns come after the file's, all NaN.
+  ASSERT_EQ(log.header.columns,
+            (std::vector<std::string>{"t", "q1", "q3", "tau1", "tau1_bias", "q2", "tau2"}));
+  EXPECT_EQ(log.Column("tau1"), (std::vector<double>{0.5, 0.6}));
+  for (double v : log.Column("q2")) EXPECT_TRUE(std::isnan(v));
+  for (double v : log.Column("tau2")) EXPECT_TRUE(std::isnan(v));
+  const StandardColumns columns(log.header);
+  EXPECT_EQ(columns.q2, 5);
+  EXPECT_EQ(columns.tau2, 6);
+}
+
+TEST_F(LogReaderTest, AJointEmptyInTheFirstRowIsNotRecordedAndMustStayEmpty) {
+  const Log log = Read(kHeader + "0,,0.2,0.1,,0.4\n1,nan,0.3,0.1,,0.5\n");
+  EXPECT_FALSE(log.header.JointRecorded(1));
+  EXPECT_TRUE(log.header.JointRecorded(2));
+  EXPECT_FALSE(log.header.QuasiStatic());
+  EXPECT_EQ(log.Column("q2"), (std::vector<double>{0.2, 0.3}));
+  EXPECT_TRUE(std::isnan(log.Value(1, 1)));
+  EXPECT_EQ(ErrorOf(kHeader + "0,0.1,,0.1,0.2,\n\n1,0.1,0.05,0.1,0.2,\n"),
+            "FILE:4:3: joint 2 is not recorded (q2 and tau2 are empty in the first data row) but "
+            "q2 holds 0.05 here \u2014 give q2 and tau2 on every row, or leave both empty on every "
+            "row of a log that records one joint");
+  // One of a joint's pair left out is still a missing column, and a row with
+  // neither joint is a bad row, not a log of no joint.
+  EXPECT_EQ(ErrorOf("t,q1,q3,tau1,tau2\n0,0,0.1,0,0\n"),
+            "FILE:1: missing required column 'q2' (joint 2 (pitch) angle in rad); columns found: "
+            "t, q1, q3, tau1, tau2 \u2014 add the missing columns, or rename the columns that hold "
+            "these quantities");
+  EXPECT_EQ(ErrorOf(kHeader + "0,,,0.1,,\n"),
+            "FILE:2:2: required column 'q1' holds no value" + kRequiredFix);
+  EXPECT_EQ(ErrorOf("t,q1,q3,tau1\n0,,0.1,\n"),
+            "FILE:2:2: required column 'q1' holds no value" + kRequiredFix);
+}
+
 TEST_F(LogReaderTest, TimeMustIncreaseStrictly) {
   EXPECT_EQ(ErrorOf(kHeader + "0.5,0,0,0.1,0,0\n0.25,0,0,0.1,0,0\n"),
             "FILE:3:1: t = 0.25 s is not greater than the previous row's t = 0.5 s \u2014 t must "
@@ -313,6 +353,27 @@ TEST(TipReference, PrefersTruthThenReferenceThenNone) {
   header.columns.resize(6);
   EXPECT_EQ(FindTipReference(StandardColumns(header)).name, "");
   EXPECT_EQ(FindTipReference(StandardColumns(header)).q1, -1);
+}
+
+}  // namespace
+}  // namespace pliant::io
+
+namespace pliant::io {
+namespace {
+
+TEST_F(LogReaderTest, TipFixedIsAFlagAndSegmentACount) {
+  const std::string header = "t,q1,q2,q3,tau1,tau2,tip_fixed,segment\n";
+  EXPECT_EQ(ErrorOf(header + "0,0,0,0.1,0,0,1,0\n0.1,0,0,0.1,0,0,2,0\n"),
+            "FILE:3:7: tip_fixed = 2 is neither 0 nor 1 \u2014 write 1 on rows where the tip is "
+            "held still (clamped or in a divot) and 0 elsewhere");
+  EXPECT_EQ(ErrorOf(header + "0,0,0,0.1,0,0,0.5,0\n"),
+            "FILE:2:7: tip_fixed = 0.5 is neither 0 nor 1 \u2014 write 1 on rows where the tip is "
+            "held still (clamped or in a divot) and 0 elsewhere");
+  EXPECT_EQ(ErrorOf(header + "0,0,0,0.1,0,0,1,2.5\n"),
+            "FILE:2:8: segment = 2.5 is not a whole number \u2014 number the segments 0, 1, 2, "
+            "… and give every row its segment's number");
+  // Empty (unknown) and whole values read.
+  EXPECT_EQ(ErrorOf(header + "0,0,0,0.1,0,0,,\n0.1,0,0,0.1,0,0,0,3\n"), "no error");
 }
 
 }  // namespace

@@ -69,19 +69,6 @@ nlohmann::json SummariseStudy(const Study& study, const std::vector<TrialResult>
 /// (DIR/error_distribution.png, DIR/error_vs_contact.png). Needs gnuplot.
 void PlotStudy(const std::vector<TrialResult>& rows, const std::string& dir);
 
-/// A progress bar with an ETA on stderr when it is a terminal; silent otherwise.
-class Progress {
- public:
-  Progress(int total, int already_done);
-  ~Progress();
-  void Tick();
-
- private:
-  int total_, done_, started_with_;
-  double start_s_, last_draw_s_ = -1.0;
-  bool terminal_;
-};
-
 /// Runs `trials` on `threads` threads (0: all cores); `done` is called for each
 /// finished trial, one call at a time. The first exception of a trial stops
 /// the others and is rethrown.

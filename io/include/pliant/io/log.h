@@ -26,6 +26,20 @@ inline constexpr std::array<std::string_view, 13> kOptionalColumns = {
 struct LogHeader {
   std::vector<std::pair<std::string, std::string>> metadata;
   std::vector<std::string> columns;
+  /// Whether joint 1 and joint 2 are recorded. A log may record one joint only
+  /// (a calibration of the joint under test): the other's qJ and tauJ columns are
+  /// absent from the file or empty in every row, and read as NaN. Consumers leave
+  /// an unrecorded joint at its prior and say so.
+  std::array<bool, 2> joint_recorded = {true, true};
+
+  /// joint is 1 or 2.
+  bool JointRecorded(int joint) const { return joint_recorded[joint == 2 ? 1 : 0]; }
+  /// A log of quasi-static means, one row per pose (metadata "timing: quasi-static"):
+  /// t only orders the rows, so no estimator may read dynamics from it.
+  bool QuasiStatic() const { return Metadata(kTimingKey) == kQuasiStatic; }
+
+  static constexpr std::string_view kTimingKey = "timing";
+  static constexpr std::string_view kQuasiStatic = "quasi-static";
 
   /// Position of a column in file order, or -1 when the log has none.
   int Index(std::string_view name) const;

@@ -27,7 +27,8 @@ struct LogReaderOptions {
 
 class LogReader {
  public:
-  /// Opens the file and reads metadata and header. Throws InputError.
+  /// Opens the file ("-": standard input, named "<stdin>" in messages and by
+  /// path()) and reads metadata and header. Throws InputError.
   explicit LogReader(std::string path, LogReaderOptions options = {});
   ~LogReader();
   LogReader(const LogReader&) = delete;
@@ -55,7 +56,13 @@ class LogReader {
   [[noreturn]] void Fail(std::size_t column, std::string problem, std::string fix) const;
   [[noreturn]] void FailFieldCount(std::size_t fields) const;
   void ReadHeader();
+  void ShowProgress();
+  void AddAbsentJoints();
+  void PeekFirstRow();
+  bool TakeLine(std::string_view& line);
+  void CheckUnrecordedJointsEmpty() const;
   void CheckRanges();
+  void CheckTipFixedAndSegment() const;
 
   std::string path_;
   LogReaderOptions options_;
@@ -64,6 +71,9 @@ class LogReader {
   std::vector<double> row_;
   std::vector<int> required_;      // column index of each required column
   std::vector<char> is_required_;  // per column in file order: 1 when required
+  std::size_t file_columns_ = 0;    // columns in the file; absent joints are appended after
+  std::string pending_line_;        // the first data row, read ahead to see which joints it has
+  bool has_pending_ = false;
   std::size_t line_ = 0;
   std::size_t header_line_ = 0;
   std::size_t rows_ = 0;
@@ -71,6 +81,8 @@ class LogReader {
   double last_t_ = 0.0;
   bool have_last_t_ = false;
   bool finished_ = false;
+  int tip_fixed_column_ = -1;  // -1 when the log has none
+  int segment_column_ = -1;
 };
 
 /// Reads a whole log. Throws InputError.

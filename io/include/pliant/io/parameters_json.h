@@ -19,6 +19,10 @@ inline constexpr int kParametersVersion = 1;
 /// line of the offending key.
 models::ModelParameters ReadParameters(const std::string& path);
 
+/// The whole text of a parameters file. Throws InputError when it cannot be
+/// opened or is a directory.
+std::string ReadParametersText(const std::string& path);
+
 /// Parses parameters from JSON text; `file` names it in error messages.
 models::ModelParameters ParseParameters(const std::string& text, const std::string& file);
 
