@@ -77,13 +77,13 @@ void UnmodelledEffort::Learn(double weight, double residual, double rest_varianc
 void InternalTorque::Start(const FilterOptions& o) {
   coefficients.setZero();
   regressor.setZero();
-  const Eigen::Vector3d sd(o.internal_inertia_sd_kg_m2, o.internal_coulomb_sd_nm,
-                           o.internal_viscous_sd_nm_s);
+  const Vector4 sd(o.internal_inertia_sd_kg_m2, o.internal_coulomb_sd_nm,
+                   o.internal_viscous_sd_nm_s, o.internal_bias_error_sd_nm);
   covariance = sd.cwiseProduct(sd).asDiagonal();
 }
 
 void InternalTorque::SetMotion(const FilterOptions& o, double velocity, double acceleration) {
-  regressor << acceleration, std::tanh(velocity / o.coulomb_speed_rad_s), velocity;
+  regressor << acceleration, std::tanh(velocity / o.coulomb_speed_rad_s), velocity, 1.0;
 }
 
 // Weighted recursive least squares: the row counts with weight w (its
@@ -91,9 +91,9 @@ void InternalTorque::SetMotion(const FilterOptions& o, double velocity, double a
 // `forget` per row that teaches.
 void InternalTorque::Learn(double weight, double residual, double variance, double forget) {
   if (!(weight > 1e-3)) return;
-  const Eigen::Vector3d u = covariance * regressor;
+  const Vector4 u = covariance * regressor;
   const double s = regressor.dot(u) + variance / weight;
-  const Eigen::Vector3d k = u / s;
+  const Vector4 k = u / s;
   coefficients += k * (residual - Torque());
   covariance -= k * u.transpose();
   covariance = 0.5 * (covariance + covariance.transpose()) / forget;

@@ -68,12 +68,14 @@ double ContactPosterior(double prior, double contact_innovation, double contact_
 // The Gaussian-sum collapse of the slab posterior and its tau = 0 conditional.
 void CollapseContact(FilterJointState* state, double probability);
 // The arm's own torque in the effort while it moves, learned online from
-// no-contact rows: inertia J·θ̈, Coulomb friction f·tanh(θ̇/v_f) and viscous
-// friction c·θ̇ (recursive least squares with forgetting; filter_contact.cpp).
+// no-contact rows: inertia J·θ̈, Coulomb friction f·tanh(θ̇/v_f), viscous
+// friction c·θ̇ and the bias table's mean error τ_b (recursive least squares
+// with forgetting; filter_contact.cpp).
 struct InternalTorque {
-  Eigen::Vector3d coefficients = Eigen::Vector3d::Zero();  // J, f, c
-  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
-  Eigen::Vector3d regressor = Eigen::Vector3d::Zero();     // this row's (θ̈, tanh(θ̇/v_f), θ̇)
+  using Vector4 = Eigen::Matrix<double, 4, 1>;
+  Vector4 coefficients = Vector4::Zero();  // J, f, c, τ_b
+  Eigen::Matrix4d covariance = Eigen::Matrix4d::Zero();
+  Vector4 regressor = Vector4::Zero();     // this row's (θ̈, tanh(θ̇/v_f), θ̇, 1)
   void Start(const FilterOptions& o);
   void SetMotion(const FilterOptions& o, double velocity_rad_s, double acceleration_rad_s2);
   double Torque() const { return coefficients.dot(regressor); }

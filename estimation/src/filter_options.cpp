@@ -156,6 +156,7 @@ bool FilterOptions::IsValid(std::string* error) const {
                                 {"internal_inertia_sd_kg_m2", internal_inertia_sd_kg_m2},
                                 {"internal_coulomb_sd_nm", internal_coulomb_sd_nm},
                                 {"internal_viscous_sd_nm_s", internal_viscous_sd_nm_s},
+                                {"internal_bias_error_sd_nm", internal_bias_error_sd_nm},
                                 {"coulomb_speed_rad_s", coulomb_speed_rad_s},
                                 {"internal_torque_memory_s", internal_torque_memory_s},
                                 {"unmodelled_effort_speed_rad_s", unmodelled_effort_speed_rad_s},

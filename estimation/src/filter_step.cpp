@@ -63,7 +63,10 @@ void ComplianceFilter::Impl::AdvanceState(const FilterSample& sample, double pre
       sample.tip_fixed && last_tip_fixed && std::abs(depth - previous_depth) > kMaxHeldDepthChange;
   const double gap_s = sample.time_s - state_clock.last_time;
   Eigen::Vector2d increment;
-  double dt = state_clock.Advance(sample, options.sample_period_s, &increment, implausible_jump);
+  // A quasi-static log's t is a pose index: the encoder's step is judged per row, not per second.
+  FilterSample timed = sample;
+  if (options.quasi_static) timed.time_s = state_clock.last_time + 1.0;
+  double dt = state_clock.Advance(timed, options.sample_period_s, &increment, implausible_jump);
   const bool gap = options.quasi_static || gap_s > options.time_gap_s;
   // A quasi-static log's t is a pose index: the process noise is one nominal period's.
   if (gap) dt = options.sample_period_s;
@@ -186,8 +189,12 @@ void ComplianceFilter::Impl::UpdateEffort(const FilterSample& sample, int j, boo
   // The moving arm's own torque, as far as the log has taught it, is taken
   // out; what it has not taught is effort noise.
   InternalTorque& arm = internal_torque[j];
-  arm.SetMotion(options, options.quasi_static ? 0.0 : motion[j].velocity_rad_s,
-                options.quasi_static ? 0.0 : motion[j].acceleration_rad_s2);
+  // A quasi-static log has no dynamics, and its table error is σ_rest's.
+  if (options.quasi_static) {
+    arm.regressor.setZero();
+  } else {
+    arm.SetMotion(options, motion[j].velocity_rad_s, motion[j].acceleration_rad_s2);
+  }
   const double arm_torque = mixture ? arm.Torque() : 0.0;
   const double variance =
       sample.tip_fixed ? HeldEffortVariance(options, inertial_torque)

@@ -263,11 +263,12 @@ struct FilterOptions {
   /// The memory of σ_moving's estimate, s.
   double unmodelled_effort_memory = 2.0;
   /// The moving arm's own torque, learned online from no-contact rows (RLS):
-  /// J·θ̈ + f·tanh(θ̇/v_f) + c·θ̇, each coefficient from 0 with these prior σ;
+  /// J·θ̈ + f·tanh(θ̇/v_f) + c·θ̇ + τ_b, each coefficient from 0 with these prior σ;
   /// the past fades with internal_torque_memory_s.
   double internal_inertia_sd_kg_m2 = 0.3;
   double internal_coulomb_sd_nm = 0.3;
   double internal_viscous_sd_nm_s = 0.3;
+  double internal_bias_error_sd_nm = 0.1;  ///< τ_b: the bias table's mean error along the path
   double coulomb_speed_rad_s = 0.05;  ///< v_f
   double internal_torque_memory_s = 30.0;
   // Never diverge (docs/decisions/reinitialise.md).
