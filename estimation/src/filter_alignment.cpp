@@ -55,7 +55,7 @@ FilterEstimate ComplianceFilter::Impl::Output(const FilterSample& newest) {
   // wall; without the tip_fixed hint the estimate is the contact chain's
   // collapse, and a limited output lagged it by tens of mrad for seconds on
   // the real free-motion bag (docs/decisions/output-step-limit.md).
-  if (!newest.tip_fixed) restart_output[0] = restart_output[1] = true;
+  if (options.infer_contact && !newest.tip_fixed) restart_output[0] = restart_output[1] = true;
   const Eigen::Vector2d limit =
       newest_step.cwiseAbs().array() + options.output_step_limit_counts * output_count_rad;
   limiter.Apply(limit, restart_output, newest.encoder_rad, newest_depth, &estimate);

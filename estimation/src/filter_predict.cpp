@@ -148,8 +148,8 @@ void ComplianceFilter::Impl::Release(int j, double dt, double encoder_increment)
 // time gap, the first sample after missing ones, every quasi-static row):
 // a free tip starts again at the encoder with the prior's doubt, uncorrelated
 // (q_tip = q_enc − b − s·K·tau at the predicted b, tau, s); a held tip stays,
-// as the tip_fixed hint says. The load starts again from its prior spread
-// either way, and a held shaft may have moved in its clearance. The
+// as the tip_fixed hint says, and its shaft keeps its wall (the hysteresis
+// moves it with the load). The load starts again from its prior spread. The
 // instrument's states (s, e, β) carry over. The prediction has run first:
 // this widens its result.
 void ComplianceFilter::Impl::Reinitialise(int j, const FilterSample& sample) {
@@ -162,8 +162,6 @@ void ComplianceFilter::Impl::Reinitialise(int j, const FilterSample& sample) {
     P.row(kTip).setZero();
     P.col(kTip).setZero();
     P(kTip, kTip) = prior(kTip, kTip);
-  } else {
-    P(kBacklash, kBacklash) += prior(kBacklash, kBacklash);
   }
   P(kTorque, kTorque) += prior(kTorque, kTorque);
   transition[j].process_noise[kTorque] += prior(kTorque, kTorque);
