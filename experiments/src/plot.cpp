@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -43,6 +44,16 @@ std::string Terminal(const Figure& figure, const std::string& path) {
   return t.str();
 }
 
+// gnuplot stops a whole figure on a series whose every point is undefined
+// ("all points y value undefined"), e.g. the residual of a joint the log does
+// not record: such a series is left out, like an empty one.
+bool HasFinitePoint(const PlotSeries& series) {
+  for (std::size_t i = 0; i < series.x.size() && i < series.y.size(); ++i) {
+    if (std::isfinite(series.x[i]) && std::isfinite(series.y[i])) return true;
+  }
+  return false;
+}
+
 std::string Script(const Figure& figure, const std::string& path, const std::string& data) {
   std::ostringstream s;
   s << "set terminal " << Terminal(figure, path) << "\n"
@@ -57,7 +68,7 @@ std::string Script(const Figure& figure, const std::string& path, const std::str
     bool first = true;
     for (const PlotSeries& series : panel.series) {
       const int block = index++;
-      if (series.x.empty()) continue;  // gnuplot refuses a plot with no defined point
+      if (!HasFinitePoint(series)) continue;
       s << (first ? "" : ", \\\n     ") << Quoted(data) << " index " << block << " using 1:2 with "
         << series.style << " title " << Quoted(series.title);
       first = false;

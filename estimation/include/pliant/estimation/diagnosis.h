@@ -32,7 +32,7 @@ struct DiagnoseOptions {
   /// candidate (see CandidateEffectNames()).
   std::vector<std::string> candidates;
   int max_lag_samples = 30;          ///< residual–channel cross-correlation over ±this
-  double family_significance = 0.01; ///< false-discovery level over all tests at once
+  double family_significance = 0.05; ///< family-wise error level over all candidates (Holm)
   int folds = 5;                     ///< cross-validation folds, by segment
   FilterOptions filter;              ///< for the standardised innovations
   /// Where the tip was: "auto" (q*_ref, else tip_fixed, else q*_true),
