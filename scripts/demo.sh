@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Fresh machine to the main job on the shipped data: installs dependencies,
 # builds the pliant command, then, on the real JHU 2017 recordings
-# (tests/data/jhu-2017, docs/real-data.md):
+# (data/real/, made by pliant import from the JHU files; docs/real-data.md):
 #   R1. identifies joints 1 and 2 from the real bias sweeps and clamped beams
 #       (the held friction included; the paper's Fig. 6 redrawn);
 #   R2. corrects the real clamped beam of joint 1 with the identified file;
@@ -20,18 +20,18 @@ cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release
 cmake --build build -j "$(nproc)" --target pliant
 mkdir -p out
 pliant=build/cli/pliant
-real=tests/data/jhu-2017
+real=data/real
 echo
 echo "== R1. identify: the real bias sweeps and clamped beams -> out/real.json"
-$pliant identify $real/bias_sweep_joint1.csv $real/bias_sweep_joint2.csv \
-  $real/clamped_beam_joint1.csv $real/clamped_beam_joint2.csv -o out/real.json \
+$pliant identify $real/jhu2017_bias_j1.csv $real/jhu2017_bias_j2.csv \
+  $real/jhu2017_clamped_j1.csv $real/jhu2017_clamped_j2.csv -o out/real.json \
   --figure out/real_fig6.png > out/real_identify.txt 2> out/real_identify_warnings.txt
 sed -n -e '1,2p' -e '/held_friction/p' -e '/backlash_rad/p' -e '/compliance at depth/,/L = 0.226/p' \
   -e '/wrote/p' out/real_identify.txt
 sed -n -e '/clearance/p' out/real_identify_warnings.txt
 echo
 echo "== R2. correct: the real clamped beam of joint 1 with the identified file"
-$pliant correct --params out/real.json $real/clamped_beam_joint1.csv -o out/real_clamped_j1.csv
+$pliant correct --params out/real.json $real/jhu2017_clamped_j1.csv -o out/real_clamped_j1.csv
 echo
 echo "== 1. identify: calibration logs -> out/identified.json"
 $pliant identify data/bias_sweep.csv data/clamped_beam.csv -o out/identified.json \
