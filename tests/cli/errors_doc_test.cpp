@@ -62,6 +62,10 @@ TEST(ErrorsPage, EveryRealRunPrintsWhatThePageShows) {
   }
   for (const DocumentedRun& run : runs) {
     ASSERT_NE(run.exit_code, -1) << run.arguments << ": no 'exit N' line follows it";
+#ifndef PLIANT_HAVE_ROS1
+    // A pliant built without ROS 1 (the sanitizer build) answers every bag alike.
+    if (run.arguments.find(".bag") != std::string::npos) continue;
+#endif
     const auto r = RunCommand("cd '" + dir.string() + "' && " + kCli + run.arguments, dir);
     EXPECT_EQ(r.exit_code, run.exit_code) << run.arguments << "\n" << r.err;
     EXPECT_EQ(r.err, run.stderr_text) << run.arguments;
