@@ -39,6 +39,7 @@ void PrintSummary(const FilterCommandOptions& o, const estimation::LogFilterSumm
                o.output_path.c_str());
   if (s.skipped_rows > 0)
     std::fprintf(out, "  skipped %zu bad rows (--skip-bad-rows)\n", s.skipped_rows);
+  for (const auto& note : s.notes) std::fprintf(out, "  %s\n", note.c_str());
   std::fprintf(out, "  mean NIS per measurement %.3f (1 when the noise model is right)\n",
                s.mean_nis_per_dof);
   std::fprintf(out,
