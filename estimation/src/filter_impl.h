@@ -75,6 +75,10 @@ struct InternalTorque {
   using Vector4 = Eigen::Matrix<double, 4, 1>;
   Vector4 coefficients = Vector4::Zero();  // J, f, c, τ_b
   Eigen::Matrix4d covariance = Eigen::Matrix4d::Zero();
+  // Information form (the fading is done there; filter_contact.cpp says why).
+  Eigen::Matrix4d information = Eigen::Matrix4d::Zero();
+  Eigen::Matrix4d prior_information = Eigen::Matrix4d::Zero();
+  Vector4 information_mean = Vector4::Zero();  // information · coefficients
   Vector4 regressor = Vector4::Zero();     // this row's (θ̈, tanh(θ̇/v_f), θ̇, 1)
   void Start(const FilterOptions& o);
   void SetMotion(const FilterOptions& o, double velocity_rad_s, double acceleration_rad_s2);

@@ -65,9 +65,7 @@ std::vector<Row> FreeMotionWithInternalTorque(double contact_nm, double contact_
   return rows;
 }
 
-// Disabled: 71 % of rows within 2σ (the median holds); the real bag reaches 95.8 %.
-// docs/decisions/contact-prior.md, "Open".
-TEST(FilterContact, DISABLED_FreeMotionIsNotCorrectedByTheArmsOwnTorque) {
+TEST(FilterContact, FreeMotionIsNotCorrectedByTheArmsOwnTorque) {
   const auto rows = FreeMotionWithInternalTorque(0.0, 1e9, 1);
   ComplianceFilter filter(models::testing::PaperParameters());
   std::vector<double> correction;
