@@ -177,6 +177,10 @@ Command AddFilterCommand(CLI::App& app) {
       "--no-load-following", [&f](std::int64_t) { f.load_follows_motor = false; },
       "Predict a held tip's load as a random walk instead of by the bend the motor's encoder "
       "increment puts into a shaft on its wall (docs/filter.md)");
+  sub->add_flag_function(
+      "--no-contact-inference", [&f](std::int64_t) { f.infer_contact = false; },
+      "Read every effort residual as external load where the log's tip_fixed is 0 or absent, "
+      "instead of contact being the exception (docs/decisions/contact-prior.md)");
   sub->add_option("--inertial-error", f.inertial_torque_error,
                   "κ: the share of the fitted inertial torque J·θ̈ the fit may misread, as effort "
                   "variance (κ·J·θ̈)² with the tip held (0: exact; only with --motor-inertia)")
