@@ -3,6 +3,7 @@
 //   dense_fixed    — a straightforward fixed-size Eigen EKF of the same model
 //                    (Jet Jacobians, dense Joseph update; bench/filter_baselines.h),
 //   dense_dynamic  — the same with dynamic-size Eigen matrices,
+//   contact        — the filter without the tip_fixed hint (contact inferred),
 // on a 1.5 kHz divot-push log drawn from the model. Each benchmark times every
 // step on its own (steady_clock, its overhead subtracted) and reports the
 // median and the 99th percentile in ns, and the heap allocations per step.
@@ -118,6 +119,18 @@ void BM_FilterStepAligned(benchmark::State& state) {
   TimeSteps(state, [&](const FilterSample& s) { benchmark::DoNotOptimize(filter.Step(s)); });
 }
 
+// The same log without the tip_fixed hint, as online: contact is inferred
+// (FilterOptions::infer_contact, the two-hypothesis collapse) and the arm's
+// own torque learned (a 4×4 information update per joint). What the contact
+// model costs on top of BM_FilterStep (the dense baselines have none).
+void BM_FilterStepContact(benchmark::State& state) {
+  pliant::estimation::ComplianceFilter filter(pliant::models::testing::PaperParameters());
+  TimeSteps(state, [&](FilterSample s) {
+    s.tip_fixed = false;
+    benchmark::DoNotOptimize(filter.Step(s));
+  });
+}
+
 void BM_DenseFixedEkf(benchmark::State& state) {
   pliant::bench::DenseFixedEkf ekf(pliant::models::testing::PaperParameters(), {});
   TimeSteps(state, [&](const FilterSample& s) {
@@ -157,6 +170,7 @@ void BM_Offline900k(benchmark::State& state) {
 BENCHMARK(BM_Equation2)->Iterations(2'000'000);
 BENCHMARK(BM_FilterStep)->Iterations(2'000'000);
 BENCHMARK(BM_FilterStepAligned)->Iterations(2'000'000);
+BENCHMARK(BM_FilterStepContact)->Iterations(2'000'000);
 BENCHMARK(BM_DenseFixedEkf)->Iterations(2'000'000);
 BENCHMARK(BM_DenseDynamicEkf)->Iterations(1'000'000);
 BENCHMARK(BM_Offline900k)->Iterations(1)->Unit(benchmark::kSecond);

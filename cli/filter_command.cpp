@@ -39,6 +39,7 @@ void PrintSummary(const FilterCommandOptions& o, const estimation::LogFilterSumm
                o.output_path.c_str());
   if (s.skipped_rows > 0)
     std::fprintf(out, "  skipped %zu bad rows (--skip-bad-rows)\n", s.skipped_rows);
+  for (const auto& note : s.notes) std::fprintf(out, "  %s\n", note.c_str());
   std::fprintf(out, "  mean NIS per measurement %.3f (1 when the noise model is right)\n",
                s.mean_nis_per_dof);
   std::fprintf(out,
@@ -176,6 +177,10 @@ Command AddFilterCommand(CLI::App& app) {
       "--no-load-following", [&f](std::int64_t) { f.load_follows_motor = false; },
       "Predict a held tip's load as a random walk instead of by the bend the motor's encoder "
       "increment puts into a shaft on its wall (docs/filter.md)");
+  sub->add_flag_function(
+      "--no-contact-inference", [&f](std::int64_t) { f.infer_contact = false; },
+      "Read every effort residual as external load where the log's tip_fixed is 0 or absent, "
+      "instead of contact being the exception (docs/decisions/contact-prior.md)");
   sub->add_option("--inertial-error", f.inertial_torque_error,
                   "κ: the share of the fitted inertial torque J·θ̈ the fit may misread, as effort "
                   "variance (κ·J·θ̈)² with the tip held (0: exact; only with --motor-inertia)")

@@ -51,6 +51,11 @@ FilterEstimate ComplianceFilter::Impl::Output(const FilterSample& newest) {
   FilterEstimate estimate = state_estimate;
   const double newest_depth = std::isfinite(newest.insertion_depth_m) ? newest.insertion_depth_m : depth;
   if (held_count > 0) CarryEstimate(state_sample, newest, newest_depth, &estimate);
+  // The limit serves a held tip, whose estimate jumps when the shaft meets its
+  // wall; without the tip_fixed hint the estimate is the contact chain's
+  // collapse, and a limited output lagged it by tens of mrad for seconds on
+  // the real free-motion bag (docs/decisions/output-step-limit.md).
+  if (options.infer_contact && !newest.tip_fixed) restart_output[0] = restart_output[1] = true;
   const Eigen::Vector2d limit =
       newest_step.cwiseAbs().array() + options.output_step_limit_counts * output_count_rad;
   limiter.Apply(limit, restart_output, newest.encoder_rad, newest_depth, &estimate);

@@ -51,6 +51,48 @@ struct InstrumentUncertainty {
   double effort_offset_sd_nm = 0.0;
 };
 
+// Joint j's prior covariance for a clearance δ (filter.cpp).
+Matrix PriorCovariance(const FilterOptions& o, double delta, const InstrumentUncertainty& u);
+
+// The contact chain's prediction for one step (filter_contact.cpp).
+struct ContactPrior {
+  double probability = 0.0;  // of contact, before this step's effort
+  double continuing = 0.0;   // the share of it that is the last step's contact going on
+};
+ContactPrior MixContact(const FilterOptions& o, double probability, double dt);
+// The posterior probability of contact from the slab's innovation (and its
+// variance) and the no-contact residual (its scale², Student-t with free_dof
+// degrees of freedom, Gaussian when free_dof is infinite).
+double ContactPosterior(double prior, double contact_innovation, double contact_variance,
+                        double free_residual, double free_variance, double free_dof);
+// The Gaussian-sum collapse of the slab posterior and its tau = 0 conditional.
+void CollapseContact(FilterJointState* state, double probability);
+// The arm's own torque in the effort while it moves, learned online from
+// no-contact rows: inertia J·θ̈, Coulomb friction f·tanh(θ̇/v_f), viscous
+// friction c·θ̇ and the bias table's mean error τ_b (recursive least squares
+// with forgetting; filter_contact.cpp).
+struct InternalTorque {
+  using Vector4 = Eigen::Matrix<double, 4, 1>;
+  Vector4 coefficients = Vector4::Zero();  // J, f, c, τ_b
+  Eigen::Matrix4d covariance = Eigen::Matrix4d::Zero();
+  // Information form (the fading is done there; filter_contact.cpp says why).
+  Eigen::Matrix4d information = Eigen::Matrix4d::Zero();
+  Eigen::Matrix4d prior_information = Eigen::Matrix4d::Zero();
+  Vector4 information_mean = Vector4::Zero();  // information · coefficients
+  Vector4 regressor = Vector4::Zero();     // this row's (θ̈, tanh(θ̇/v_f), θ̇, 1)
+  void Start(const FilterOptions& o);
+  void SetMotion(const FilterOptions& o, double velocity_rad_s, double acceleration_rad_s2);
+  double Torque() const { return coefficients.dot(regressor); }
+  double Variance() const { return regressor.dot(covariance * regressor); }
+  void Learn(double weight, double residual, double variance, double forget);
+};
+// σ_moving², the moving arm's unmodelled internal torque (FilterOptions::
+// moving_effort_sd_nm), learned from moving no-contact rows.
+struct UnmodelledEffort {
+  double variance = 0.0;  // N·m²
+  void Learn(double weight, double residual, double rest_variance);
+};
+
 // Time and encoder increments between consecutive samples: a step of no time
 // is one sample period, and at most 1 s; an increment faster than any joint
 // can move (or from a NaN) is not motion: 0, and flagged implausible.
@@ -100,6 +142,11 @@ struct ComplianceFilter::Impl {
 
   void AdvanceMotion(const FilterSample& sample);
   void StepState(const FilterSample& sample);
+  void AdvanceState(const FilterSample& sample, double previous_depth, StepTally* tally);
+  double ContactOnsetVariance(const FilterSample& sample, int j, double dt);
+  void UpdateMeasurements(const FilterSample& sample, StepTally* tally);
+  void UpdateEffort(const FilterSample& sample, int j, bool unloaded, StepTally* tally);
+  void Reinitialise(int j, const FilterSample& sample);
   FilterEstimate Output(const FilterSample& newest);
 
   void Initialise(const FilterSample& sample, double depth);
@@ -160,6 +207,15 @@ struct ComplianceFilter::Impl {
   double compliance_at_depth[2] = {0.0, 0.0};
   bool last_tip_fixed = false;
   bool implausible_jump[2] = {false, false};  // encoder moved faster than any joint can
+  double step_dt = 0.0;  // the state's last step, s (a nominal period across a gap)
+  // The contact chain (FilterOptions::infer_contact): its probability after
+  // the last effort, its prediction for this step, and the load variance the
+  // onset of a new contact adds to this step's prediction.
+  double contact_probability[2] = {1.0, 1.0};
+  double contact_prior[2] = {1.0, 1.0};
+  double contact_onset[2] = {0.0, 0.0};
+  filter_internal::UnmodelledEffort unmodelled[2];
+  filter_internal::InternalTorque internal_torque[2];
   MotorMotion motion[2];  // for the inertial torque in the effort, from the newest sample
   // The motor's rate over the state's own step (rad/s): the shaft's bend rate
   // with the tip held, in step with the effort it is taken out of.

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <string>
 #include <vector>
 
 #include "pliant/estimation/filter_smoother.h"
@@ -27,11 +29,12 @@ struct OutputColumns {
         flags(header.AddColumn("flags")) {}
 
   void Fill(const FilterEstimate& e, double* row) const {
-    row[q1] = e.corrected_rad[0];
-    row[q2] = e.corrected_rad[1];
-    row[sd1] = std::sqrt(e.covariance_rad2(0, 0));
-    row[sd2] = std::sqrt(e.covariance_rad2(1, 1));
-    row[cov] = e.covariance_rad2(0, 1);
+    constexpr double kEmpty = std::numeric_limits<double>::quiet_NaN();
+    row[q1] = recorded[0] ? e.corrected_rad[0] : kEmpty;
+    row[q2] = recorded[1] ? e.corrected_rad[1] : kEmpty;
+    row[sd1] = recorded[0] ? std::sqrt(e.covariance_rad2(0, 0)) : kEmpty;
+    row[sd2] = recorded[1] ? std::sqrt(e.covariance_rad2(1, 1)) : kEmpty;
+    row[cov] = recorded[0] && recorded[1] ? e.covariance_rad2(0, 1) : kEmpty;
     row[tip] = e.tip_correction_mm;
     row[tip_sd] = e.tip_correction_sd_mm;
     row[nis] = e.nis;
@@ -39,7 +42,34 @@ struct OutputColumns {
   }
 
   int q1, q2, sd1, sd2, cov, tip, tip_sd, nis, flags;
+  bool recorded[2] = {true, true};  // an unrecorded joint's columns are empty
 };
+
+// The log's header decides what the filter may read from it: which joints it
+// records, and whether its time is only a pose index (docs/filter.md).
+FilterOptions OptionsForLog(FilterOptions options, const io::LogHeader& header,
+                            LogFilterSummary* summary) {
+  options.quasi_static = options.quasi_static || header.QuasiStatic();
+  if (options.quasi_static) {
+    summary->notes.push_back("quasi-static log: each row filtered as an independent static "
+                             "measurement (t read as a pose index only)");
+  }
+  for (int j = 0; j < 2; ++j) {
+    options.joint_recorded[j] = header.JointRecorded(j + 1);
+    if (!options.joint_recorded[j]) {
+      const std::string n = std::to_string(j + 1);
+      summary->notes.push_back("joint " + n + " not recorded: kept at its prior, q" + n +
+                               "_corr and q" + n + "_sd left empty");
+    }
+  }
+  return options;
+}
+
+std::string Note(const std::string& metadata_note, const LogFilterSummary& summary) {
+  std::string note = metadata_note;
+  for (const auto& n : summary.notes) note += "; " + n;
+  return note;
+}
 
 class Tally {
  public:
@@ -100,13 +130,16 @@ LogFilterSummary FilterLog(const std::string& input_path, const std::string& out
   LogFilterSummary summary;
   summary.smoothed = smooth;
   if (!smooth) {
-    ComplianceFilter filter(parameters, options);
     io::LogReader reader(input_path, read_options);
     io::LogHeader header = reader.header();
+    const FilterOptions used = OptionsForLog(options, header, &summary);
+    ComplianceFilter filter(parameters, used);
     const io::StandardColumns in(header);
     const std::size_t input_columns = header.columns.size();
-    const OutputColumns out(header);
-    if (!metadata_note.empty()) header.metadata.emplace_back("filter", metadata_note);
+    OutputColumns out(header);
+    out.recorded[0] = used.joint_recorded[0];
+    out.recorded[1] = used.joint_recorded[1];
+    if (!metadata_note.empty()) header.metadata.emplace_back("filter", Note(metadata_note, summary));
     io::LogWriter writer(output_path, header);
     Tally tally(&summary, in);
     std::vector<double> row(header.columns.size());
@@ -128,9 +161,14 @@ LogFilterSummary FilterLog(const std::string& input_path, const std::string& out
   const io::StandardColumns in(log.header);
   io::LogHeader header = log.header;
   const std::size_t input_columns = header.columns.size();
-  const OutputColumns out(header);
-  if (!metadata_note.empty()) header.metadata.emplace_back("filter", metadata_note + ", RTS smoothed");
-  FilterSmoother smoother(parameters, options);
+  const FilterOptions used = OptionsForLog(options, header, &summary);
+  OutputColumns out(header);
+  out.recorded[0] = used.joint_recorded[0];
+  out.recorded[1] = used.joint_recorded[1];
+  if (!metadata_note.empty()) {
+    header.metadata.emplace_back("filter", Note(metadata_note, summary) + ", RTS smoothed");
+  }
+  FilterSmoother smoother(parameters, used);
   const std::size_t rows = log.Rows();
   smoother.Reserve(rows);
   Tally tally(&summary, in);

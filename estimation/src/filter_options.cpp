@@ -145,6 +145,27 @@ bool FilterOptions::IsValid(std::string* error) const {
     return Fail(error, "FilterOptions::seating_bound_weight must lie in (0, 1] — e.g. 0.9, or 1 "
                        "to keep the tip–load correlation when the tip is seated");
   }
+  for (const auto& [name, v] : {std::pair<const char*, double>{"contact_start_rate_hz",
+                                                                  contact_start_rate_hz},
+                                {"contact_end_rate_hz", contact_end_rate_hz},
+                                {"contact_load_sd_nm", contact_load_sd_nm},
+                                {"unmodelled_effort_sd_nm", unmodelled_effort_sd_nm},
+                                {"unmodelled_effort_memory", unmodelled_effort_memory},
+                                {"moving_effort_sd_nm", moving_effort_sd_nm},
+                                {"moving_effort_dof", moving_effort_dof},
+                                {"internal_inertia_sd_kg_m2", internal_inertia_sd_kg_m2},
+                                {"internal_coulomb_sd_nm", internal_coulomb_sd_nm},
+                                {"internal_viscous_sd_nm_s", internal_viscous_sd_nm_s},
+                                {"internal_bias_error_sd_nm", internal_bias_error_sd_nm},
+                                {"coulomb_speed_rad_s", coulomb_speed_rad_s},
+                                {"internal_torque_memory_s", internal_torque_memory_s},
+                                {"unmodelled_effort_speed_rad_s", unmodelled_effort_speed_rad_s},
+                                {"time_gap_s", time_gap_s}}) {
+    if (!(std::isfinite(v) && v > 0.0)) {
+      return Fail(error, std::string("FilterOptions::") + name +
+                             " must be finite and > 0 — see filter_options.h for its unit");
+    }
+  }
   if (reacquire_after < 1 || reacquire_after > 100000) {
     return Fail(error, "FilterOptions::reacquire_after must be in [1, 100000] samples — e.g. 25 "
                        "(17 ms at 1.5 kHz)");

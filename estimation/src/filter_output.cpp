@@ -15,7 +15,9 @@ namespace {
 // covariance is J·C·Jᵀ, and the σ of its length is taken along it.
 void SetTipCorrection(const Eigen::Vector2d& encoder_rad, double insertion_depth_m,
                       FilterEstimate* e) {
-  const Eigen::Vector2d q = encoder_rad.allFinite() ? encoder_rad : e->corrected_rad;
+  // A joint without its encoder (missing, or unrecorded) adds no correction.
+  const Eigen::Vector2d q(std::isfinite(encoder_rad[0]) ? encoder_rad[0] : e->corrected_rad[0],
+                          std::isfinite(encoder_rad[1]) ? encoder_rad[1] : e->corrected_rad[1]);
   const Eigen::Matrix2d jac = models::TipDisplacementJacobianMm(
       Eigen::Vector3d(q[0], q[1], insertion_depth_m));
   const Eigen::Vector2d shift = jac * (q - e->corrected_rad);

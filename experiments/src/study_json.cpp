@@ -141,20 +141,25 @@ Study ParseStudy(const std::string& text, const std::string& file) {
   if (doc.contains("filter")) {  // the estimator's own options, not the plant's
     const auto& filter = doc["filter"];
     r.Object(filter, "/filter",
-             {{"deflection_model_error", false}, {"load_follows_motor", false},
+             {{"deflection_model_error", false}, {"load_follows_motor", false}, {"infer_contact", false},
               {"inertial_torque_error", false}, {"unloaded_start_s", false}});
     if (filter.contains("deflection_model_error")) {
       s.deflection_model_error = r.Number(filter["deflection_model_error"],
                                           "/filter/deflection_model_error", "(share of K·τ)", 0.0, 1.0);
     }
-    if (filter.contains("load_follows_motor")) {
-      if (!filter["load_follows_motor"].is_boolean()) {
-        r.Fail("/filter/load_follows_motor",
-               "load_follows_motor must be true or false, found " + filter["load_follows_motor"].dump(),
-               "write true (a held load follows the motor) or false (a random walk)");
+    const auto flag = [&](const char* key, const std::string& advice, bool* value) {
+      if (!filter.contains(key)) return;
+      if (!filter[key].is_boolean()) {
+        r.Fail(std::string("/filter/") + key,
+               std::string(key) + " must be true or false, found " + filter[key].dump(), advice);
       }
-      s.load_follows_motor = filter["load_follows_motor"].get<bool>();
-    }
+      *value = filter[key].get<bool>();
+    };
+    flag("load_follows_motor", "write true (a held load follows the motor) or false (a random walk)",
+         &s.load_follows_motor);
+    flag("infer_contact",
+         "write true (contact is the exception where tip_fixed is 0) or false (all effort is load)",
+         &s.infer_contact);
     if (filter.contains("inertial_torque_error")) {
       s.inertial_torque_error = r.Number(filter["inertial_torque_error"],
                                          "/filter/inertial_torque_error", "(share of J·θ̈)", 0.0, 10.0);

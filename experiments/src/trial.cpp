@@ -193,6 +193,7 @@ TrialResult RunTrial(const Study& study, int trial) {
   InstrumentPrior(study, parameters, &options);
   options.deflection_model_error = study.deflection_model_error;  // NaN: the filter's default
   options.load_follows_motor = study.load_follows_motor;
+  options.infer_contact = study.infer_contact;
   options.unloaded_start_s = study.unloaded_start_s;
   if (std::isfinite(study.inertial_torque_error)) {
     options.inertial_torque_error = study.inertial_torque_error;

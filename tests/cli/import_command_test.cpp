@@ -48,6 +48,8 @@ TEST(ImportCommand, ReadsTheBagByArm) {
   const auto result = Import("--arm PSM2 '" + kBag + "'", dir);
   ASSERT_EQ(result.exit_code, 0) << result.err;
   EXPECT_EQ(result.out.rfind("pliant import: 3420 rows -> ", 0), 0u) << result.out;
+  // The shipped log the free-motion tests read is this import, byte for byte.
+  EXPECT_EQ(ReadText(dir / "out.csv"), ReadText(kReal + "crtk2022_psm2_free.csv"));
 }
 
 struct BadImport {

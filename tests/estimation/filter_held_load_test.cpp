@@ -104,8 +104,10 @@ TEST(HeldEffortVariance, AddsTheInertialTorquesShare) {
 // Measured: bounded s 0.978, tip 97 counts off; with the load's rate free
 // (σ_τ̇ alone) s 0.658, tip 393 counts off (build/bench/filter_steady_hold_bench).
 TEST(FilterHeldLoad, ABoundedLoadKeepsTheScaleThroughALongHold) {
-  const auto bounded = TraceScaleOverHold(FilterOptions(), 1.5, 19.0, 1.0);
-  FilterOptions off;
+  FilterOptions on;
+  on.infer_contact = false;  // the approach's free tip carries the load: all of it is load
+  const auto bounded = TraceScaleOverHold(on, 1.5, 19.0, 1.0);
+  FilterOptions off = on;
   off.bound_held_load_rate = false;
   const auto unbounded = TraceScaleOverHold(off, 1.5, 19.0, 1.0);
   EXPECT_NEAR(bounded.at_end, 1.0, 0.05);

@@ -34,6 +34,8 @@ TEST(ComplianceFilter, AReleaseBetweenHoldsForgetsTheWallTheShaftSatOn) {
   FilterOptions o;  // the instrument is the parameters' own: no clearance or bias-offset doubt
   o.backlash_sd_rad.setZero();
   o.effort_offset_sd_nm.setZero();
+  o.infer_contact = false;  // the free tip carries a load on every sample: all of it is load
+  o.time_gap_s = 1.0;  // rows 0.9 s apart are consecutive hold means here, not gaps
   ComplianceFilter filter(p, o);
   // Clamped at 0.15 m, pushed to +1 N·m and eased back to 0.3 N·m: the shaft
   // sits on its + wall, b = +δ, and the tip is pinned.

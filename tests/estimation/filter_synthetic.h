@@ -60,6 +60,8 @@ inline FilterOptions ModelLogOptions() {
   o.deflection_model_error = 0.0;
   o.backlash_sd_rad.setZero();
   o.effort_offset_sd_nm.setZero();
+  // Every free sample of such a log carries a load (its effort residual is all load).
+  o.infer_contact = false;
   return o;
 }
 

@@ -64,7 +64,10 @@ inline int KillAndReap(pid_t child) {
 
 /// A fresh, empty directory for one test.
 inline std::filesystem::path FreshDirectory(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / ("pliant_test_" + name);
+  // The process id keeps two test runs on one machine (two build trees, two
+  // checkouts) out of each other's directories.
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("pliant_test_" + name + "_" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;

@@ -101,6 +101,11 @@ enum FilterFlag : std::uint32_t {
   kFlagReacquired = 1u << 5,       ///< covariance inflated after repeated rejections
   kFlagRepaired = 1u << 6,         ///< covariance was not positive definite and was repaired
   kFlagOutputLimited = 1u << 7,    ///< corrected angle behind the estimate (output step limit)
+  /// The process model could not bridge this step (an encoder step faster than
+  /// any joint moves, a time gap beyond FilterOptions::time_gap_s, the first
+  /// sample after missing ones): a free tip restarted at the encoder with the
+  /// prior's doubt, the load's doubt widened (docs/decisions/reinitialise.md).
+  kFlagReinitialised = 1u << 8,
 };
 
 /// One control period's output.
@@ -125,6 +130,9 @@ struct FilterEstimate {
   Eigen::Vector2d compliance_scale{1.0, 1.0};
   Eigen::Vector2d clearance_error_rad{0.0, 0.0};  ///< e: clearance − parameters' δ
   Eigen::Vector2d effort_offset_nm{0.0, 0.0};     ///< beta
+  /// The probability that something touches the instrument, per joint: 1 with
+  /// the tip_fixed hint, else the contact chain's (FilterOptions::infer_contact).
+  Eigen::Vector2d contact_probability{1.0, 1.0};
 };
 
 /// States per joint block, and their order.

@@ -13,6 +13,7 @@
 
 #include <cstddef>
 #include <string>
+#include <vector>
 
 #include "pliant/estimation/filter.h"
 #include "pliant/estimation/tip_error_statistics.h"
@@ -35,6 +36,9 @@ struct LogFilterSummary {
   TipErrorStatistics filtered;
   TipErrorStatistics smoothed_error;   ///< when smoothed
   double mean_nis_per_dof = 0.0;       ///< ≈ 1 when the noise model is right
+  /// What the log's header changed (a quasi-static log, an unrecorded joint),
+  /// one sentence each; also in the output's "filter" metadata.
+  std::vector<std::string> notes;
 };
 
 /// The sample the filter sees in one row of a log with these columns.

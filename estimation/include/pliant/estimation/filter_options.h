@@ -237,6 +237,52 @@ struct FilterOptions {
   /// estimate (the mean squared error P + d·dᵀ), flagged kFlagOutputLimited.
   /// The filter's state never sees the limit. Infinity: off.
   double output_step_limit_counts = 2.0;
+  // Contact, for samples without the tip_fixed hint (docs/decisions/contact-prior.md).
+  /// true: without tip_fixed, contact is the exception. The external load is
+  /// 0 (no contact) or a slab N(·, σ_c²) (contact), a two-state Markov chain
+  /// with rates λ_on, λ_off; each effort update ends with the Gaussian-sum
+  /// collapse of the two (FilterEstimate::contact_probability). The effort's
+  /// unmodelled internal torque (inertia, friction, the bias table's error)
+  /// is effort noise σ_u, learned from the log's no-contact rows. false: the
+  /// whole effort residual is load (a held tip's model, for every sample).
+  bool infer_contact = true;
+  double contact_start_rate_hz = 0.1;  ///< λ_on, 1/s: a contact every 10 s on average
+  double contact_end_rate_hz = 0.5;    ///< λ_off, 1/s: a contact lasts 2 s on average
+  double contact_load_sd_nm = 1.0;     ///< σ_c, N·m: the spread of a contact's load
+  /// σ_u² = σ_rest² + m·σ_moving², m = min(1, |θ̇|/unmodelled_effort_speed):
+  /// at rest the bias table's own error (σ_rest, fixed); moving, the arm's
+  /// inertia and friction besides (σ_moving, learned from the log's moving
+  /// no-contact rows; this its prior, generous: the filter doubts a moving
+  /// arm's effort until the log shows how well the bias table explains it).
+  double unmodelled_effort_sd_nm = 0.05;         ///< σ_rest, N·m
+  double moving_effort_sd_nm = 0.3;              ///< σ_moving's prior, N·m
+  double unmodelled_effort_speed_rad_s = 0.1;    ///< the speed from which the arm counts as moving
+  /// ν: a moving arm's unmodelled torque is Student-t with ν degrees of
+  /// freedom (heavy tails: a spike of inertia or stiction is not a contact).
+  double moving_effort_dof = 4.0;
+  /// The memory of σ_moving's estimate, s.
+  double unmodelled_effort_memory = 2.0;
+  /// The moving arm's own torque, learned online from no-contact rows (RLS):
+  /// J·θ̈ + f·tanh(θ̇/v_f) + c·θ̇ + τ_b, each coefficient from 0 with these prior σ;
+  /// the past fades with internal_torque_memory_s.
+  double internal_inertia_sd_kg_m2 = 0.3;
+  double internal_coulomb_sd_nm = 0.3;
+  double internal_viscous_sd_nm_s = 0.3;
+  double internal_bias_error_sd_nm = 0.1;  ///< τ_b: the bias table's mean error along the path
+  double coulomb_speed_rad_s = 0.05;  ///< v_f
+  double internal_torque_memory_s = 30.0;
+  // Never diverge (docs/decisions/reinitialise.md).
+  /// A step of more than this between two rows is a time gap: the tip and the
+  /// load are re-initialised (kFlagReinitialised), s.
+  double time_gap_s = 0.1;
+  /// One row per pose (a log with "# timing: quasi-static"): t is a pose index,
+  /// read for nothing; each row is an independent static measurement of the
+  /// same instrument (the tip of a free row and every row's load start again
+  /// from their priors; s, e, β and the shaft's offset carry over).
+  bool quasi_static = false;
+  /// Joints the log records (LogHeader::JointRecorded): an unrecorded joint
+  /// keeps its prior, flags nothing missing, and its output is NaN.
+  bool joint_recorded[2] = {true, true};
   // Robustness.
   double gate_probability = 0.9999;  ///< χ²(1) gate on each scalar innovation
   int reacquire_after = 25;          ///< consecutive rejections before re-acquiring

@@ -87,6 +87,9 @@ struct Study {
   /// FilterOptions::load_follows_motor and inertial_torque_error (κ); the
   /// filter's defaults (true; NaN: 0.3) unless the study's "filter" sets them.
   bool load_follows_motor = true;
+  /// FilterOptions::infer_contact (the filter's default, true, unless the
+  /// study's "filter" sets it).
+  bool infer_contact = true;
   double inertial_torque_error = std::numeric_limits<double>::quiet_NaN();
   /// FilterOptions::unloaded_start_s: the seconds at each simulated log's start
   /// with the tip free, the arm still and no load (0: none).

@@ -1,0 +1,117 @@
+// Contact as the exception (FilterOptions::infer_contact): without the
+// tip_fixed hint the external load is either 0 (no contact) or a slab
+// N(·, σ_c²) (contact), switching as a two-state Markov chain. The filter
+// keeps one Gaussian: before the effort update the slab's onset widens the
+// load's variance (the IMM mixing of the chain), the update is the slab's,
+// and after it the two hypotheses are collapsed into their mean and
+// covariance (GPB1). docs/decisions/contact-prior.md says why.
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Cholesky>
+
+#include "filter_impl.h"
+
+namespace pliant::estimation::filter_internal {
+
+ContactPrior MixContact(const FilterOptions& o, double probability, double dt) {
+  ContactPrior m;
+  if (o.quasi_static) {
+    // Each row is its own static measurement: the chain's stationary share,
+    // and any contact is a new one.
+    m.probability = o.contact_start_rate_hz / (o.contact_start_rate_hz + o.contact_end_rate_hz);
+    m.continuing = 0.0;
+    return m;
+  }
+  const double start = -std::expm1(-o.contact_start_rate_hz * dt);
+  const double end = -std::expm1(-o.contact_end_rate_hz * dt);
+  const double stays = probability * (1.0 - end);
+  m.probability = stays + (1.0 - probability) * start;
+  m.continuing = m.probability > 0.0 ? stays / m.probability : 0.0;
+  return m;
+}
+
+double ContactPosterior(double prior, double contact_innovation, double contact_variance,
+                        double free_residual, double free_variance, double free_dof) {
+  // Full log densities: the no-contact residual is Student-t when free_dof
+  // is finite, and its normalisation differs from the Gaussian's.
+  constexpr double kLogTwoPi = 1.8378770664093453;
+  const auto log_normal = [](double x, double v) {
+    return -0.5 * (x * x / v + std::log(v) + kLogTwoPi);
+  };
+  const double l1 = log_normal(contact_innovation, contact_variance);
+  double l0 = log_normal(free_residual, free_variance);
+  if (std::isfinite(free_dof)) {
+    const double nu = free_dof;
+    l0 = std::lgamma(0.5 * (nu + 1.0)) - std::lgamma(0.5 * nu) -
+         0.5 * std::log(nu * 3.14159265358979323846 * free_variance) -
+         0.5 * (nu + 1.0) * std::log1p(free_residual * free_residual / (nu * free_variance));
+  }
+  if (!(std::isfinite(l1) && std::isfinite(l0))) return prior;
+  const double prior_odds = std::log(prior) - std::log1p(-prior);
+  const double log_odds = std::clamp(prior_odds + l1 - l0, -700.0, 700.0);
+  return 1.0 / (1.0 + std::exp(-log_odds));
+}
+
+// The mixture of the slab posterior N(x, P) (weight p) and the same Gaussian
+// conditioned on tau = 0 (weight 1 − p): with m = x_tau, g = P e_tau / P_tautau,
+//   x+ = x − (1 − p)·m·g,   P+ = P − (1 − p)·(P_tautau − p·m²)·g gᵀ,
+// a rank-one update (the conditioned branch is x − m·g, P − P_tautau·g gᵀ).
+void CollapseContact(FilterJointState* state, double probability) {
+  if (probability >= 1.0) return;
+  Matrix& P = state->covariance;
+  const double p_tau = P(kTorque, kTorque);
+  if (!(p_tau > 0.0)) return;
+  const double m = state->mean[kTorque];
+  const Vector g = P.col(kTorque) / p_tau;
+  state->mean -= (1.0 - probability) * m * g;
+  P.noalias() -= ((1.0 - probability) * (p_tau - probability * m * m)) * (g * g.transpose());
+}
+
+void UnmodelledEffort::Learn(double weight, double residual, double rest_variance) {
+  // Winsorised at 3σ of the no-contact residual, so that a contact the chain
+  // has not yet recognised does not inflate it.
+  const double total = rest_variance + variance;
+  const double r2 = std::min(residual * residual, 9.0 * total);
+  variance += weight * (std::max(0.0, r2 - rest_variance) - variance);
+}
+
+void InternalTorque::Start(const FilterOptions& o) {
+  coefficients.setZero();
+  regressor.setZero();
+  information_mean.setZero();
+  const Vector4 sd(o.internal_inertia_sd_kg_m2, o.internal_coulomb_sd_nm,
+                   o.internal_viscous_sd_nm_s, o.internal_bias_error_sd_nm);
+  prior_information = sd.cwiseProduct(sd).cwiseInverse().asDiagonal();
+  information = prior_information;
+  covariance = sd.cwiseProduct(sd).asDiagonal();
+}
+
+void InternalTorque::SetMotion(const FilterOptions& o, double velocity, double acceleration) {
+  regressor << acceleration, std::tanh(velocity / o.coulomb_speed_rad_s), velocity, 1.0;
+}
+
+// Weighted least squares with stabilised forgetting, in information form: per
+// row that teaches (weight w: its no-contact probability × how much the arm
+// moves), the past's information fades by `forget` toward the prior's, not
+// toward none: I ← λ·I + (1 − λ)·I₀ + w·φφᵀ/σ², ξ ← λ·ξ + w·φ·r/σ² (the prior's
+// mean is 0). Plain exponential forgetting (P ← P/λ) blows up the covariance
+// in the directions a motion does not excite (a constant sign of θ̇ makes
+// tanh(θ̇/v_f), θ̇ and 1 nearly collinear) until rounding makes it indefinite:
+// on the synthetic free motion of filter_contact_test.cpp the arm's torque
+// then jumped to 1.4 N·m and was read as a contact for the rest of the log.
+// Here I ≥ (1 − λ)·I₀ > 0 always, so the coefficients' spread never exceeds
+// the prior's by more than 1/(1 − λ) and the covariance stays positive.
+void InternalTorque::Learn(double weight, double residual, double variance, double forget) {
+  if (!(weight > 1e-3)) return;
+  const double w = weight / variance;
+  information = forget * information + (1.0 - forget) * prior_information;
+  information.noalias() += w * regressor * regressor.transpose();
+  information_mean = forget * information_mean + (w * residual) * regressor;
+  const Eigen::LLT<Eigen::Matrix4d> factor(information);
+  if (factor.info() != Eigen::Success) return;
+  coefficients = factor.solve(information_mean);
+  covariance = factor.solve(Eigen::Matrix4d::Identity());
+}
+
+}  // namespace pliant::estimation::filter_internal

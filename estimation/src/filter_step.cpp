@@ -1,0 +1,236 @@
+// One step of the filter's state (filter.h): prediction (or a release, or a
+// re-initialisation), the efforts with the contact chain, the encoders, the
+// references, then the repairs and the mismatch window.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "filter_impl.h"
+#include "pliant/models/effects/shaft_damping.h"
+
+namespace pliant::estimation {
+
+using namespace filter_internal;
+
+void ComplianceFilter::Impl::StepState(const FilterSample& sample) {
+  StepTally tally;
+  const double previous_depth = depth;
+  if (std::isfinite(sample.insertion_depth_m)) {
+    depth = sample.insertion_depth_m;
+  } else {
+    tally.flags |= kFlagMissing;
+  }
+  for (const auto& jp : parameters.joints) {
+    if (depth < jp.depth_min_m || depth > jp.depth_max_m) tally.flags |= kFlagDepthOutOfRange;
+  }
+  if (!initialised) {
+    Initialise(sample, depth);
+    state_clock.Start(sample);
+    restart_output[0] = restart_output[1] = true;
+    step_dt = options.sample_period_s;
+  } else {
+    AdvanceState(sample, previous_depth, &tally);
+  }
+  last_tip_fixed = sample.tip_fixed;
+  UpdateMeasurements(sample, &tally);
+  for (int j = 0; j < 2; ++j) Repair(j, sample, check_phase == kFullCheckPeriod / 2 * j, &tally);
+  check_phase = (check_phase + 1) % kFullCheckPeriod;
+  UpdateWindow(&tally);
+
+  FilterEstimate& estimate = state_estimate;
+  estimate = MakeEstimate(joint[0], joint[1], sample.encoder_rad, depth);
+  estimate.nis = tally.nis;
+  estimate.nis_dof = tally.dof;
+  estimate.window_nis = window_sum;
+  estimate.window_threshold = window_threshold[window_dof_sum];
+  if (window_count == options.mismatch_window && window_dof_sum > 0 &&
+      window_sum > estimate.window_threshold) {
+    tally.flags |= kFlagModelMismatch;
+  }
+  estimate.flags = tally.flags;
+  for (int j = 0; j < 2; ++j) estimate.contact_probability[j] = contact_probability[j];
+  state_sample = sample;
+  advanced = true;
+}
+
+// The prediction from the last sample to this one. What the process model
+// cannot bridge is re-initialised (Reinitialise): an encoder step faster than
+// any joint moves (a pose change between rows, or the first sample after
+// missing ones), a time gap, and every row of a quasi-static log.
+void ComplianceFilter::Impl::AdvanceState(const FilterSample& sample, double previous_depth,
+                                          StepTally* tally) {
+  const bool released =
+      sample.tip_fixed && last_tip_fixed && std::abs(depth - previous_depth) > kMaxHeldDepthChange;
+  const double gap_s = sample.time_s - state_clock.last_time;
+  Eigen::Vector2d increment;
+  // A quasi-static log's t is a pose index: the encoder's step is judged per row, not per second.
+  FilterSample timed = sample;
+  if (options.quasi_static) timed.time_s = state_clock.last_time + 1.0;
+  double dt = state_clock.Advance(timed, options.sample_period_s, &increment, implausible_jump);
+  const bool gap = options.quasi_static || gap_s > options.time_gap_s;
+  // A quasi-static log's t is a pose index: the process noise is one nominal period's.
+  if (gap) dt = options.sample_period_s;
+  step_dt = dt;
+  for (int j = 0; j < 2; ++j) {
+    bend_rate_rad_s[j] = options.quasi_static ? 0.0 : increment[j] / dt;
+    if (!options.joint_recorded[j]) continue;  // an unrecorded joint keeps its prior
+    if (released) {
+      Release(j, dt, increment[j]);
+      restart_output[j] = true;
+      continue;
+    }
+    const bool jump = implausible_jump[j] && std::isfinite(sample.encoder_rad[j]);
+    contact_onset[j] = ContactOnsetVariance(sample, j, dt);
+    Predict(j, dt, sample.tip_fixed, sample.tip_fixed && !last_tip_fixed, increment[j]);
+    if (jump || gap) {
+      Reinitialise(j, sample);
+      // The quasi-static log's every row re-initialises: a flag there says nothing.
+      if (jump || !options.quasi_static) tally->flags |= kFlagReinitialised;
+    }
+  }
+}
+
+// The slab's onset (the contact chain's mixing, filter_contact.cpp): the
+// share of this step's contact probability that is a new contact brings a
+// load of spread σ_c. Only without the tip_fixed hint.
+double ComplianceFilter::Impl::ContactOnsetVariance(const FilterSample& sample, int j, double dt) {
+  if (!options.infer_contact || sample.tip_fixed) return 0.0;
+  const ContactPrior prior = MixContact(options, contact_probability[j], dt);
+  contact_prior[j] = prior.probability;
+  const double sd = options.contact_load_sd_nm;
+  return (1.0 - prior.continuing) * sd * sd;
+}
+
+void ComplianceFilter::Impl::UpdateMeasurements(const FilterSample& sample, StepTally* tally) {
+  // s is taught by the load the filter is sure of: ∂h/∂s = K·tau scaled to
+  // SureLoad (K·tau is linear in tau), so that a load within its noise is not
+  // a regressor whose noise biases s toward 0; and only while that load holds
+  // the shaft on its wall (ScaleLearningFraction). Taken at the prediction, as
+  // the dense baselines, which update all channels at once, do.
+  double sure_fraction[2];
+  for (int j = 0; j < 2; ++j) {
+    sure_fraction[j] = ScaleLearningFraction(options, joint[j].mean[kTorque],
+                                             joint[j].covariance(kTorque, kTorque), width[j]);
+  }
+  const bool unloaded = InUnloadedStart(options, sample.time_s - start_time_s);
+  for (int j = 0; j < 2; ++j) {
+    if (options.joint_recorded[j]) UpdateEffort(sample, j, unloaded, tally);
+  }
+  // Encoders, linearised at the state the efforts just updated.
+  Eigen::Vector2d predicted;
+  Vector h[2];
+  EncoderModel(depth, &predicted, h);
+  for (int j = 0; j < 2; ++j) {
+    if (!options.joint_recorded[j]) continue;
+    if (!std::isfinite(sample.encoder_rad[j])) {
+      tally->flags |= kFlagMissing;
+      continue;
+    }
+    const double deflection = options.deflection_model_error * h[j][kScale];
+    h[j][kScale] *= sure_fraction[j];
+    ScalarUpdate(j, kEncoderChannel, h[j], sample.encoder_rad[j] - predicted[j],
+                 options.encoder_noise_rad * options.encoder_noise_rad + deflection * deflection,
+                 tally, false, ConsiderFor(sample, j, unloaded));
+  }
+  for (int j = 0; j < 2; ++j) {
+    const double ref = sample.reference_rad[j];
+    if (!std::isfinite(ref)) continue;  // most logs have no reference: not "missing"
+    ScalarUpdate(j, kReferenceChannel, Vector::Unit(kTip), ref - joint[j].mean[kTip],
+                 options.reference_noise_rad * options.reference_noise_rad, tally);
+  }
+}
+
+// Efforts: tau_meas − tau0(q_enc, L) = tau + beta (tau0 is evaluated at the
+// measured angle, an input, so its row is the unit vectors of tau and beta).
+void ComplianceFilter::Impl::UpdateEffort(const FilterSample& sample, int j, bool unloaded,
+                                          StepTally* tally) {
+  const bool mixture = options.infer_contact && !sample.tip_fixed && !unloaded;
+  if (!mixture) contact_probability[j] = 1.0;  // told: held (or the tare's known 0)
+  if (unloaded) {  // the load is known: 0, with no doubt, whatever the effort says
+    joint[j].mean[kTorque] = 0.0;
+    joint[j].covariance.row(kTorque).setZero();
+    joint[j].covariance.col(kTorque).setZero();
+  }
+  const double effort = sample.effort_nm[j];
+  const bool usable = std::isfinite(effort) && std::abs(effort) < options.effort_limit_nm;
+  if (!std::isfinite(effort)) tally->flags |= kFlagMissing;
+  if (std::isfinite(effort) && !usable) tally->flags |= kFlagEffortSaturated;
+  if (!usable) {
+    if (mixture) {  // the chain's prediction alone
+      contact_probability[j] = contact_prior[j];
+      CollapseContact(&joint[j], contact_probability[j]);
+    }
+    return;
+  }
+  const double q =
+      std::isfinite(sample.encoder_rad[j]) ? sample.encoder_rad[j] : joint[j].mean[kTip];
+  const double tau0 = models::BiasTorqueAt(parameters.joints[j], q, depth);
+  // The inertial torque, with the tip held only. With a free tip the load
+  // is ~0 and the effort serves to pin b; there the flicker of the estimated
+  // acceleration (one count ≈ 0.07 rad/s², 0.006 N·m) walked b across the
+  // clearance during the long free-tip rests of a divot log and moved the
+  // tip by δ. With it, the shaft's damping, in proportion to how firmly the
+  // load the filter is sure of holds the shaft on its wall. The fitted J·θ̈
+  // is also what the effort's variance allows a share of to be misread
+  // (HeldEffortVariance).
+  const double inertial_torque = sample.tip_fixed ? motion[j].InertialTorque(options) : 0.0;
+  const double inertial =
+      sample.tip_fixed ? inertial_torque +
+                             models::ShaftDampingTorque(options.shaft_damping_nm_s_per_rad,
+                                                        bend_rate_rad_s[j], step_hold[j])
+                       : 0.0;
+  const double noise = options.effort_noise_nm * options.effort_noise_nm;
+  // Unmodelled internal torque counts as effort noise (FilterOptions::moving_effort_sd_nm).
+  const double moving =
+      options.quasi_static
+          ? 0.0
+          : std::min(1.0, std::abs(motion[j].velocity_rad_s) / options.unmodelled_effort_speed_rad_s);
+  const double rest = noise + options.unmodelled_effort_sd_nm * options.unmodelled_effort_sd_nm;
+  // The moving arm's own torque, as far as the log has taught it, is taken
+  // out; what it has not taught is effort noise.
+  InternalTorque& arm = internal_torque[j];
+  // A quasi-static log has no dynamics, and its table error is σ_rest's.
+  if (options.quasi_static) {
+    arm.regressor.setZero();
+  } else {
+    arm.SetMotion(options, motion[j].velocity_rad_s, motion[j].acceleration_rad_s2);
+  }
+  const double arm_torque = mixture ? arm.Torque() : 0.0;
+  const double variance =
+      sample.tip_fixed ? HeldEffortVariance(options, inertial_torque)
+      : mixture        ? rest + moving * unmodelled[j].variance + arm.Variance()
+                       : noise;
+  const FilterJointState& s = joint[j];
+  const double residual = effort - tau0 - inertial - arm_torque - s.mean[kOffset];
+  if (mixture) {
+    // The evidence for contact is a residual beyond what the unmodelled
+    // internal torque explains, whatever the load did before: a contact's load
+    // is drawn from the slab N(0, σ_c²); the chain alone carries persistence.
+    // (Scored against the slab's tracked load, a smooth internal torque looked
+    // like a contact that is followed well: bag rows with p ≈ 0.9 at
+    // residuals below σ_u.)
+    const double free_variance = s.covariance(kOffset, kOffset) + variance;
+    const double sd_c = options.contact_load_sd_nm;
+    // A moving arm's unmodelled torque is heavy-tailed (a spike of inertia or
+    // stiction is not a contact); a settled arm's is the table's error and noise.
+    const double dof = moving > 0.5 ? options.moving_effort_dof
+                                    : std::numeric_limits<double>::infinity();
+    contact_probability[j] = ContactPosterior(contact_prior[j], residual,
+                                              sd_c * sd_c + free_variance, residual,
+                                              free_variance, dof);
+    unmodelled[j].Learn((1.0 - contact_probability[j]) * moving *
+                            -std::expm1(-step_dt / options.unmodelled_effort_memory),
+                        residual, rest);
+    if (!options.quasi_static) {
+      arm.Learn((1.0 - contact_probability[j]) * moving, residual + arm_torque,
+                rest + unmodelled[j].variance,
+                std::exp(-step_dt / options.internal_torque_memory_s));
+    }
+  }
+  ScalarUpdate(j, kEffortChannel, Vector::Unit(kTorque) + Vector::Unit(kOffset),
+               residual - s.mean[kTorque], variance, tally, false,
+               ConsiderFor(sample, j, unloaded));
+  if (mixture) CollapseContact(&joint[j], contact_probability[j]);
+}
+
+}  // namespace pliant::estimation

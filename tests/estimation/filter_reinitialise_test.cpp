@@ -1,0 +1,150 @@
+// Never diverge (filter.h, kFlagReinitialised): a pose change between two
+// rows, a time gap, a log that starts loaded and a stretch of missing samples
+// each bring the corrected angle back within 3 of its stated σ within a
+// bounded number of rows, and keep it there.
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "../support/paper_parameters.h"
+#include "pliant/estimation/filter.h"
+#include "pliant/models/effects/backlash_hysteresis.h"
+
+namespace pliant::estimation {
+namespace {
+
+constexpr double kRate = 1500.0;
+constexpr int kBoundRows = 5;  // rows after an event before the estimate is honest again
+
+// A free tip moving at constant rate, no load: encoder = tip + noise (the
+// shaft in the middle of its clearance), effort = tau0 + noise.
+struct Row {
+  FilterSample sample;
+  Eigen::Vector2d truth;
+};
+
+std::vector<Row> FreeMotion(int rows, double rate_rad_s, unsigned seed) {
+  const auto p = models::testing::PaperParameters();
+  const FilterOptions o;
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  std::vector<Row> out;
+  for (int k = 0; k < rows; ++k) {
+    Row r;
+    r.truth << 0.1 + rate_rad_s * k / kRate, -0.2 - 0.5 * rate_rad_s * k / kRate;
+    r.sample.time_s = k / kRate;
+    for (int j = 0; j < 2; ++j) {
+      r.sample.encoder_rad[j] = r.truth[j] + o.encoder_noise_rad * normal(rng);
+      r.sample.effort_nm[j] = models::BiasTorqueAt(p.joints[j], r.sample.encoder_rad[j], 0.15) +
+                              o.effort_noise_nm * normal(rng);
+    }
+    out.push_back(r);
+  }
+  return out;
+}
+
+// The first row from which every row's corrected angle lies within 3σ of the
+// truth on both joints (rows.size() when none), and the rows flagged.
+struct Recovery {
+  std::size_t honest_from = 0;
+  int reinitialised = 0;
+};
+
+Recovery RunFilter(const std::vector<Row>& rows, std::size_t event) {
+  ComplianceFilter filter(models::testing::PaperParameters());
+  Recovery r;
+  r.honest_from = rows.size();
+  bool honest_run = false;
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    const FilterEstimate e = filter.Step(rows[k].sample);
+    r.reinitialised += (e.flags & kFlagReinitialised) != 0;
+    bool honest = true;
+    for (int j = 0; j < 2; ++j) {
+      const double sd = std::sqrt(e.covariance_rad2(j, j));
+      honest = honest && std::abs(e.corrected_rad[j] - rows[k].truth[j]) <= 3.0 * sd + 1e-12;
+    }
+    if (k < event) continue;
+    if (honest && !honest_run) r.honest_from = k;
+    if (!honest) r.honest_from = rows.size();
+    honest_run = honest;
+  }
+  return r;
+}
+
+TEST(FilterNeverDiverges, APoseChangeBetweenRowsRestartsTheTipAtTheEncoder) {
+  // One row per pose: the arm steps 0.087 rad (5°) between consecutive rows,
+  // 40 times, time stamped at the control rate.
+  auto rows = FreeMotion(300, 0.0, 1);
+  const std::size_t event = 100;
+  for (std::size_t k = event; k < rows.size(); ++k) {
+    const double step = 0.087 * double(std::min<std::size_t>(k - event + 1, 40));
+    rows[k].truth[0] += step;
+    rows[k].sample.encoder_rad[0] += step;
+  }
+  const Recovery r = RunFilter(rows, event);
+  EXPECT_LE(r.honest_from, event + kBoundRows);
+  EXPECT_EQ(r.reinitialised, 40);  // each step, and only those
+}
+
+TEST(FilterNeverDiverges, ATimeGapWithAnUnseenMoveIsBridged) {
+  // 2 s missing from the log while the arm moved 0.3 rad on joint 1.
+  auto rows = FreeMotion(600, 0.05, 2);
+  const std::size_t event = 300;
+  for (std::size_t k = event; k < rows.size(); ++k) {
+    rows[k].sample.time_s += 2.0;
+    rows[k].truth[0] += 0.3;
+    rows[k].sample.encoder_rad[0] += 0.3;
+  }
+  const Recovery r = RunFilter(rows, event);
+  EXPECT_LE(r.honest_from, event + kBoundRows);
+  EXPECT_EQ(r.reinitialised, 1);
+}
+
+TEST(FilterNeverDiverges, MissingSamplesWhileTheArmMovesFastAreBridged) {
+  // 150 rows (0.1 s) without encoders or efforts while joint 1 moves at 1 rad/s.
+  auto rows = FreeMotion(600, 1.0, 3);
+  const std::size_t event = 350;
+  for (std::size_t k = 200; k < event; ++k) {
+    rows[k].sample.encoder_rad.setConstant(FilterSample::kMissing);
+    rows[k].sample.effort_nm.setConstant(FilterSample::kMissing);
+  }
+  const Recovery r = RunFilter(rows, event);
+  EXPECT_LE(r.honest_from, event + kBoundRows);
+  EXPECT_GE(r.reinitialised, 1);
+}
+
+TEST(FilterNeverDiverges, ALogThatStartsLoadedIsHonestWithinTheBound) {
+  // The tip held from the first row with 0.8 N·m on joint 1 and −0.5 on joint
+  // 2, the shafts on their walls, then the load released over 1 s.
+  const auto p = models::testing::PaperParameters();
+  const FilterOptions o;
+  std::mt19937_64 rng(4);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  std::vector<Row> rows;
+  const Eigen::Vector2d start_load(0.8, -0.5);
+  Eigen::Vector2d backlash(p.joints[0].backlash_rad, -p.joints[1].backlash_rad);
+  for (int k = 0; k < 3000; ++k) {
+    Row r;
+    r.truth << 0.1, -0.2;
+    r.sample.time_s = k / kRate;
+    r.sample.tip_fixed = true;
+    const Eigen::Vector2d load = start_load * std::max(0.0, 1.0 - k / kRate);
+    for (int j = 0; j < 2; ++j) {
+      const auto& jp = p.joints[j];
+      backlash[j] = models::BacklashHysteresisStep(backlash[j], load[j], jp.backlash_rad,
+                                                   jp.deadzone_width_nm);
+      r.sample.encoder_rad[j] = r.truth[j] + backlash[j] + models::ComplianceAt(jp, 0.15) * load[j] +
+                                o.encoder_noise_rad * normal(rng);
+      r.sample.effort_nm[j] = models::BiasTorqueAt(jp, r.sample.encoder_rad[j], 0.15) + load[j] +
+                              o.effort_noise_nm * normal(rng);
+    }
+    rows.push_back(r);
+  }
+  const Recovery r = RunFilter(rows, 0);
+  EXPECT_LE(r.honest_from, std::size_t(kBoundRows));
+}
+
+}  // namespace
+}  // namespace pliant::estimation
