@@ -54,9 +54,12 @@ UndeterminedParameters FindUndetermined(const IdentificationData& data,
   UndeterminedParameters out;
   const auto loads = ClassifyLoads(data, bias, options);
   const bool no_bias_sweep = FreeTipSamples(data) == 0;
+  // Without any held tip nothing measures K or delta: they keep their prior
+  // as they are, with nothing to carry their uncertainty into.
+  const bool held_tip = data.CountTipFixed() > 0;
   for (int j = 0; j < 2; ++j) {
     out.bias[j] = no_bias_sweep;
-    out.backlash[j] = !loads[j].reversal;
+    out.backlash[j] = held_tip && !loads[j].reversal;
   }
   return out;
 }

@@ -25,8 +25,8 @@ double NowSeconds();
 
 /// Parameters the logs leave at their prior, per joint: the bias tau0 when no
 /// free-tip row measures it (a held tip cannot tell its slope from 1/K, nor
-/// its level from the tip angle), and delta when no tip_fixed segment loads
-/// the joint both ways. The smoother holds them at the prior mean and carries
+/// its level from the tip angle), and delta when the tip is held but no
+/// tip_fixed segment loads the joint both ways. The smoother holds them at the prior mean and carries
 /// the prior's covariance into the others' (consider_covariance.h).
 struct UndeterminedParameters {
   std::array<bool, 2> bias{{false, false}}, backlash{{false, false}};
