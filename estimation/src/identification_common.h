@@ -1,11 +1,13 @@
 #pragma once
 // Small pieces shared by the paper's procedure and the joint smoother.
 
+#include <array>
 #include <string>
 #include <vector>
 
 #include <Eigen/Core>
 
+#include "pliant/estimation/identification.h"
 #include "pliant/models/parameters.h"
 
 namespace pliant::estimation::detail {
@@ -20,5 +22,17 @@ double CorrelationCondition(const Eigen::MatrixXd& covariance);
 /// Seconds since `start` (steady clock, in seconds).
 double SecondsSince(double start);
 double NowSeconds();
+
+/// Parameters the logs leave at their prior, per joint: the bias tau0 when no
+/// free-tip row measures it (a held tip cannot tell its slope from 1/K, nor
+/// its level from the tip angle), and delta when the tip is held but no
+/// tip_fixed segment loads the joint both ways. The smoother holds them at the prior mean and carries
+/// the prior's covariance into the others' (consider_covariance.h).
+struct UndeterminedParameters {
+  std::array<bool, 2> bias{{false, false}}, backlash{{false, false}};
+};
+UndeterminedParameters FindUndetermined(const IdentificationData& data,
+                                        const models::ModelParameters& bias,
+                                        const PaperProcedureOptions& options);
 
 }  // namespace pliant::estimation::detail

@@ -8,7 +8,9 @@
 #include <ceres/ceres.h>
 #include <ceres/normal_prior.h>
 
+#include "consider_covariance.h"
 #include "identification_common.h"
+#include "identification_consider.h"
 #include "identification_costs.h"
 #include "joint_smoother_setup.h"
 
@@ -40,8 +42,9 @@ class SmootherProblem {
  public:
   SmootherProblem(const IdentificationData& data, const SmootherPrior& prior,
                   const JointSmootherOptions& options, const Noise& noise,
-                  const std::array<double, 2>& width_floor_nm, SmootherState* state)
-      : state_(state), huber_(options.robust_loss_sd) {
+                  const std::array<double, 2>& width_floor_nm,
+                  const detail::UndeterminedParameters& held, SmootherState* state)
+      : state_(state), held_(held), huber_(options.robust_loss_sd) {
     ceres::Problem::Options problem_options;
     problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
     problem_ = std::make_unique<ceres::Problem>(problem_options);
@@ -80,6 +83,11 @@ class SmootherProblem {
       if (!options.bias_depth_term) {
         problem_->SetManifold(state->bias[j].data(), new ceres::SubsetManifold(nb, {nb - 1}));
       }
+      // What the logs cannot determine stays at its prior mean (GlobalCovariance
+      // carries its prior sd into the others'): fitted, it would soak up
+      // whatever the model misses and report a tiny sd.
+      if (held_.backlash[j]) problem_->SetParameterBlockConstant(&state->delta_rad[j]);
+      if (held_.bias[j]) problem_->SetParameterBlockConstant(state->bias[j].data());
     }
     for (auto& [segment, tip] : state->tip_rad) {
       for (int j = 0; j < 2; ++j) {
@@ -148,6 +156,12 @@ class SmootherProblem {
       blocks.push_back(state_->bias[j].data());
       scale.insert(scale.end(), state_->bias[j].size(), 1.0);
     }
+    // The held parameters are free here: their columns give the sensitivity of
+    // the others to them (consider_covariance.h).
+    for (int j = 0; j < 2; ++j) {
+      if (held_.backlash[j]) problem_->SetParameterBlockVariable(&state_->delta_rad[j]);
+      if (held_.bias[j]) problem_->SetParameterBlockVariable(state_->bias[j].data());
+    }
     const long n = long(scale.size());
     Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> c(n, n);
     ceres::Covariance::Options covariance_options;
@@ -173,6 +187,7 @@ class SmootherProblem {
   }
 
   SmootherState* state_;
+  detail::UndeterminedParameters held_;
   std::array<std::array<double, 4>, 2> scaled_law_{}, law_scale_{};
   ceres::HuberLoss huber_;
   std::unique_ptr<ceres::Problem> problem_;
@@ -224,6 +239,17 @@ IdentificationResult RunJointSmoother(const IdentificationData& data,
   const IdentificationResult paper = RunPaperProcedure(data, prior, paper_options);
   const SmootherPrior smoother_prior = detail::MakePrior(prior, options);
   SmootherState state = detail::MakeInitialState(data, smoother_prior, paper, options);
+  // The paper's procedure's bias table is the measured tau0 when a sweep was
+  // logged: the branch test then looks at the load, not at a wrong bias.
+  const detail::UndeterminedParameters held =
+      detail::FindUndetermined(data, paper.parameters, options.paper);
+  for (int j = 0; j < 2; ++j) {
+    if (held.backlash[j]) state.delta_rad[j] = smoother_prior.delta_rad[j];
+    if (held.bias[j]) state.bias[j] = smoother_prior.bias[j];
+  }
+  std::vector<long> held_indices;
+  std::vector<double> held_sd;
+  detail::HeldParameters(held, smoother_prior, options, &held_indices, &held_sd);
 
   Noise noise;
   for (int j = 0; j < 2; ++j) {
@@ -247,7 +273,7 @@ IdentificationResult RunJointSmoother(const IdentificationData& data,
   result.depth_estimates = paper.depth_estimates;
   // Two passes: the second weighs the samples by the noise the first found.
   for (int pass = 0; pass < 2; ++pass) {
-    SmootherProblem problem(data, smoother_prior, options, noise, width_floor_nm, &state);
+    SmootherProblem problem(data, smoother_prior, options, noise, width_floor_nm, held, &state);
     const ceres::Solver::Summary summary = problem.Solve(options);
     result.report += "pass " + std::to_string(pass + 1) + ": " + summary.BriefReport() +
                      " (" + std::to_string(summary.total_time_in_seconds) + " s)\n";
@@ -267,8 +293,17 @@ IdentificationResult RunJointSmoother(const IdentificationData& data,
     result.report += "  variance factor " + std::to_string(variance_factor) + "\n";
     Eigen::MatrixXd covariance;
     const bool ok = problem.GlobalCovariance(options, variance_factor, &covariance);
+    detail::ConsiderResult considered;
+    if (ok && !held_indices.empty()) {
+      considered = detail::ConsiderCovariance(covariance, held_indices, held_sd);
+      covariance = considered.covariance;
+    }
     detail::FillResult(data, prior, smoother_prior, options, &state, ok ? &covariance : nullptr,
                        &result);
+    if (ok && !held_indices.empty()) {
+      for (const auto& w : detail::HeldParameterWarnings(result.parameters, considered.conditional, held))
+        result.warnings.push_back(w);
+    }
   }
   result.seconds = detail::SecondsSince(start);
   return result;

@@ -493,9 +493,10 @@ TEST(Warning, IdentifyWithoutABiasSweepSaysTheBiasKeepsItsPrior) {
                                 Quoted(dir / "p.json"),
                             dir);
   EXPECT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_NE(r.err.find("warning: no free-tip samples: the bias torque tau0(q) is not measured "
-                       "over the joint range (a bias sweep is); it keeps its prior away from the "
-                       "held angles\n"),
+  EXPECT_NE(r.err.find("warning: no free-tip samples (no bias sweep): the bias torque tau0(q) is "
+                       "not measured (a held tip cannot tell its slope from 1/K, nor its level "
+                       "from the tip angle); it keeps its prior — record a bias sweep (the "
+                       "paper's Fig. 4 protocol) to measure it\n"),
             std::string::npos)
       << r.err;
 }
