@@ -101,9 +101,16 @@ show "$pliant" filter --smooth --params "$work/identified.json" data/divot.csv -
 section "5. The filter on long simulated logs (calibrated on other seeds)"
 scen=experiments/scenarios
 sim() { "$pliant" simulate "$@" > /dev/null; }
-echo "(logs: pliant simulate $scen/{bias_sweep,clamped_beam}.json --seed 101/102, identify;"
-echo " divot.json --seed 201 [--set 'hidden_effects={}'] [--set 'truth.initial_shaft_offset_rad=[0.006,-0.005]'];"
-echo " clamped_beam.json --seed 202 [--set log.mode=all])"
+cat <<'TXT'
+$ build/cli/pliant simulate experiments/scenarios/bias_sweep.json -o $W/cal_bias.csv --seed 101
+$ build/cli/pliant simulate experiments/scenarios/clamped_beam.json -o $W/cal_clamp.csv --seed 102
+$ build/cli/pliant identify $W/cal_bias.csv $W/cal_clamp.csv -o $W/cal.json
+$ build/cli/pliant simulate experiments/scenarios/divot.json -o $W/val_divot.csv --seed 201 \
+    [--set 'hidden_effects={}' [--set 'truth.initial_shaft_offset_rad=[0.006,-0.005]']]
+$ build/cli/pliant simulate experiments/scenarios/clamped_beam.json -o $W/val_clamp.csv --seed 202 \
+    [--set log.mode=all]
+$ build/bench/filter_accuracy_bench --params $W/cal.json $W/LOG --smooth OPTIONS   # each row below
+TXT
 sim $scen/bias_sweep.json -o "$work/cal_bias.csv" --seed 101
 sim $scen/clamped_beam.json -o "$work/cal_clamp.csv" --seed 102
 "$pliant" identify "$work/cal_bias.csv" "$work/cal_clamp.csv" -o "$work/cal.json" > /dev/null
@@ -113,19 +120,33 @@ sim $scen/divot.json -o "$work/val_divot_off.csv" --seed 201 --set 'hidden_effec
   --set 'truth.initial_shaft_offset_rad=[0.006,-0.005]'
 sim $scen/clamped_beam.json -o "$work/val_clamp.csv" --seed 202
 sim $scen/clamped_beam.json -o "$work/val_clamp_all.csv" --seed 202 --set log.mode=all
-accuracy() {  # LOG, then the bench's options
-  local log=$1; shift
-  say "$build/bench/filter_accuracy_bench" --params "$work/cal.json" "$work/$log" --smooth "$@"
+accuracy() {  # LABEL LOG, then the bench's options: one row of the page's table
+  local label=$1 log=$2; shift 2
   "$build/bench/filter_accuracy_bench" --params "$work/cal.json" "$work/$log" --smooth "$@" \
-    | sed -n -e '1,2p' -e '/equation (2) /p' -e '/filter /p' -e '/smoother /p' \
-    | sed -e "s|$work/||"
+    | awk -v label="$label" -v opts="$*" '
+        /rows/ { rows = $2 }
+        /^  equation \(2\) / { eq2 = $3 }
+        /^  filter  / { filter = $2; jump = ($4 == "(no") ? "—" : $4 }
+        /^  smoother  / { smoother = $2 }
+        /^  filter \/ equation/ { share = $(NF - 1) " %" }
+        END { printf "| %s | `%s` | %s | %s | %s | %s | %s | %s |\n",
+                     label, opts, rows, eq2, filter, share, smoother, jump }'
 }
-for log in val_divot.csv val_divot_nf.csv val_clamp.csv val_clamp_all.csv val_divot_off.csv; do
-  accuracy $log --motor-inertia 0.08 --shaft-damping 0.02
-done
-for log in val_divot.csv val_divot_nf.csv val_clamp.csv val_clamp_all.csv; do
-  accuracy $log --free
-done
+echo "| log | options | rows | equation (2) RMS (mm) | filter RMS (mm) | filter / eq. (2) | smoother RMS (mm) | no jumps (counts) |"
+echo "|---|---|---|---|---|---|---|---|"
+held="--motor-inertia 0.08 --shaft-damping 0.02"
+# shellcheck disable=SC2086
+{
+  accuracy "divot, friction on" val_divot.csv $held
+  accuracy "divot, hidden effects off" val_divot_nf.csv $held
+  accuracy "clamped beam, hold means" val_clamp.csv $held
+  accuracy "clamped beam, full rate" val_clamp_all.csv $held
+  accuracy "divot, shafts off-centre" val_divot_off.csv $held
+  accuracy "divot, friction on" val_divot.csv --free
+  accuracy "divot, hidden effects off" val_divot_nf.csv --free
+  accuracy "clamped beam, hold means" val_clamp.csv --free
+  accuracy "clamped beam, full rate" val_clamp_all.csv --free
+}
 rm -f "$work"/val_*.csv "$work"/cal_*.csv
 
 section "6. The filter's covariance on the CVODE simulator (200 runs, one sample each)"
