@@ -7,12 +7,12 @@
 # cli/pliant, bench/filter_accuracy_bench and bench/filter_consistency_bench, and for the
 # tests step the test programs in tests/. Nothing is built here.
 #
-# The quick part (sections 1-7 of the page) took 241 s on the 2-core reference machine
-# under load (nice -n 19); it simulates 0.5 GB of logs into the work directory (default: a
-# new directory under /tmp, removed at the end unless --work is given). --long adds the
-# Monte Carlo studies of section 8, with 2 threads: divot 16 s, known instrument 4 s,
-# clamped 145 s, identify not timed at this commit (its 200 trials each simulate and
-# identify a calibration: about 5 minutes when first measured).
+# The quick part (sections 1-7 of the page) took 172-241 s in three runs on the 2-core
+# reference machine under load (nice -n 19). It simulates 0.5 GB of logs into the work
+# directory (default: a new directory under /tmp, removed at the end unless --work is
+# given). --long adds the Monte Carlo studies of section 8, with 2 threads: divot 16 s,
+# known instrument 4 s, clamped 145 s; identify is not timed at this commit (each of its
+# 200 trials simulates and identifies a calibration: about 5 minutes when first measured).
 #
 # The real-data score (section 3) needs clamped_cv.py (docs/real-data.md); set CLAMPED_CV
 # to its path if it is not at /work/shared/tools/clamped_cv.py. Without it that step is
