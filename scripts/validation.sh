@@ -33,8 +33,9 @@ while [ $# -gt 0 ]; do
   shift
 done
 repo=$(cd "$(dirname "$0")/.." && pwd)
-build=$(cd "${build:-$repo/build}" 2>/dev/null && pwd) || {
-  echo "scripts/validation.sh: build directory ${build:-$repo/build} not found — give a Release build of pliant" >&2
+given=${build:-$repo/build}
+build=$(cd "$given" 2>/dev/null && pwd) || {
+  echo "scripts/validation.sh: build directory $given not found — give a Release build of pliant" >&2
   exit 2
 }
 pliant=$build/cli/pliant
