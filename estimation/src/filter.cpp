@@ -52,7 +52,7 @@ Matrix filter_internal::PriorCovariance(const FilterOptions& o, double delta, co
 }
 
 ComplianceFilter::Impl::Impl(const models::ModelParameters& p, const FilterOptions& o)
-    : parameters(p), options(o), compliance(p.joints[0], p.joints[1]) {
+    : parameters(p), options(o), extra_effects(p.effects), compliance(p.joints[0], p.joints[1]) {
   const std::string why = models::ValidateParameters(p);
   if (!why.empty()) throw std::invalid_argument(why);
   std::string error;
@@ -129,6 +129,8 @@ void ComplianceFilter::Impl::Reset() {
   held_first = held_count = 0;
   newest_step.setZero();
   window_sum = 0.0;
+  travel.Reset();
+  extra_internal_torque_nm.setZero();
 }
 
 void ComplianceFilter::Impl::Initialise(const FilterSample& sample, double depth_m) {

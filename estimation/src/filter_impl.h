@@ -12,8 +12,10 @@
 
 #include <ceres/jet.h>
 
+#include "pliant/estimation/extra_effects.h"
 #include "pliant/estimation/filter.h"
 #include "pliant/models/effects/compliance.h"
+#include "pliant/models/travel_since_reversal.h"
 
 namespace pliant::estimation {
 namespace filter_internal {
@@ -143,6 +145,7 @@ struct ComplianceFilter::Impl {
   void AdvanceMotion(const FilterSample& sample);
   void StepState(const FilterSample& sample);
   void AdvanceState(const FilterSample& sample, double previous_depth, StepTally* tally);
+  void ExtraInternalTorque(const FilterSample& sample);
   double ContactOnsetVariance(const FilterSample& sample, int j, double dt);
   void UpdateMeasurements(const FilterSample& sample, StepTally* tally);
   void UpdateEffort(const FilterSample& sample, int j, bool unloaded, StepTally* tally);
@@ -187,6 +190,13 @@ struct ComplianceFilter::Impl {
 
   models::ModelParameters parameters;
   FilterOptions options;
+  // The parameters file's further effects (its "effects": held friction, …):
+  // the internal torques they put in each effort are taken out of it, as
+  // pliant correct does (the same catalogue code). The held friction's state
+  // is the travel since the last reversal.
+  ExtraEffects extra_effects;
+  models::TravelSinceReversal travel;
+  Eigen::Vector2d extra_internal_torque_nm{0.0, 0.0};  // this state step's
   models::ComplianceEffect compliance;
   std::array<StateJet, 8> compliance_coefficients;  // constants (zero derivatives)
   double delta[2];

@@ -32,6 +32,7 @@ void ComplianceFilter::Impl::StepState(const FilterSample& sample) {
     AdvanceState(sample, previous_depth, &tally);
   }
   last_tip_fixed = sample.tip_fixed;
+  ExtraInternalTorque(sample);
   UpdateMeasurements(sample, &tally);
   for (int j = 0; j < 2; ++j) Repair(j, sample, check_phase == kFullCheckPeriod / 2 * j, &tally);
   check_phase = (check_phase + 1) % kFullCheckPeriod;
@@ -51,6 +52,20 @@ void ComplianceFilter::Impl::StepState(const FilterSample& sample) {
   for (int j = 0; j < 2; ++j) estimate.contact_probability[j] = contact_probability[j];
   state_sample = sample;
   advanced = true;
+}
+
+// The internal torque of the parameters' further effects at this state
+// step's encoder angles (held friction: by the travel since the last reversal).
+void ComplianceFilter::Impl::ExtraInternalTorque(const FilterSample& sample) {
+  if (parameters.effects.empty()) return;  // (the common case: nothing to evaluate)
+  models::JointState<double> state;
+  state.encoder_angle_rad << sample.encoder_rad[0], sample.encoder_rad[1];
+  state.insertion_depth_m = depth;
+  state.travel_since_reversal_rad = travel.Update(state.encoder_angle_rad);
+  extra_internal_torque_nm = extra_effects.InternalTorque(state);
+  for (int j = 0; j < 2; ++j) {
+    if (!std::isfinite(extra_internal_torque_nm[j])) extra_internal_torque_nm[j] = 0.0;
+  }
 }
 
 // The prediction from the last sample to this one. What the process model
@@ -201,7 +216,8 @@ void ComplianceFilter::Impl::UpdateEffort(const FilterSample& sample, int j, boo
       : mixture        ? rest + moving * unmodelled[j].variance + arm.Variance()
                        : noise;
   const FilterJointState& s = joint[j];
-  const double residual = effort - tau0 - inertial - arm_torque - s.mean[kOffset];
+  const double residual =
+      effort - tau0 - inertial - arm_torque - extra_internal_torque_nm[j] - s.mean[kOffset];
   if (mixture) {
     // The evidence for contact is a residual beyond what the unmodelled
     // internal torque explains, whatever the load did before: a contact's load
