@@ -123,7 +123,7 @@ struct FilterOptions {
   /// holds J·θ̈ now, the fit knows θ̈ of ~12 ms ago; in the clamped-beam sweeps
   /// (8 Hz arm oscillation after each step) that misfit was 2–3 times the
   /// effort noise, correlated over a move, and dragged the compliance scale
-  /// and the held tip (docs/filter.md, "Aligning the inertial torque").
+  /// and the held tip (docs/decisions/0002-filter-inertial-torque-alignment.md).
   /// The count of samples is the lag over sample_period_s: a log at another
   /// rate than the PSM's 1.5 kHz needs that period set to line up.
   /// false: process each sample as it comes (the inertial torque then lags).
