@@ -189,7 +189,8 @@ struct FilterOptions {
   /// worse and their corrected angles jumpy; as a consider state it is worse
   /// still on those logs (divot 0.277 mm against 0.037 off, with σ_β from
   /// identification; docs/decisions/
-  /// 0007-filter-effort-offset-tare-and-clearance-from-a-wall.md). Turn it on with a reference, or to study its doubt.
+  /// 0007-filter-effort-offset-tare-and-clearance-from-a-wall.md). Turn it
+  /// on with a reference, or to study its doubt.
   Eigen::Vector2d effort_offset_sd_nm{0.0, 0.0};
   double effort_offset_rate_nm = 0.0;     ///< σ_β̇, N·m/√s (0: a constant offset)
   /// β's mean stays within ±this × σ_β. Why: a held tip tells β from the load
