@@ -128,7 +128,7 @@ class LoadBreakdown {
 /// error whose honest variance δ²/3 puts ±1.96σ at ±1.13δ: those rows are
 /// covered 100 % with z² ≈ 1, so a joint that is often unloaded over-covers
 /// while its NEES is right. A loaded joint's error is where the model's
-/// gaps show (docs/validation.md, Part 4, "Coverage by joint").
+/// gaps show (docs/validation.md, section 6).
 class ShaftStateBreakdown {
  public:
   void Add(int joint, double deflection_over_clearance, double error_rad, double variance_rad2) {

@@ -1,5 +1,5 @@
 // The compliance scale's drift through a long steady hold (docs/filter.md,
-// "Known limitation"; docs/validation.md, Part 4): joint 1 ramped in 0.5 s to
+// "Known limitation"; docs/decisions/0004-filter-held-load-rate.md): joint 1 ramped in 0.5 s to
 // a steady load of m·w, its tip held for 19 s, the truth's s = 1. Printed with
 // the filter's own effort noise and without any: the drift is the EKF's
 // errors-in-variables bias on s·K·tau, so it goes with the noise.

@@ -226,7 +226,7 @@ void ComplianceFilter::Impl::ScalarUpdate(int j, Channel channel, const Vector& 
   // (Schmidt–Kalman: their gain is zero, their doubt still flows into P
   // through the Joseph form below). With a gain they drifted over a long
   // free log on tiny correlations with the tip (s 1 → 0.82 over 2 M samples
-  // of the clamped sweep; validation.md). A reference still teaches them.
+  // of the clamped sweep; docs/validation.md section 5). A reference still teaches them.
   if (consider & kConsiderScale) k[kScale] = 0.0;
   // e, likewise, while the tip is free; held, until the hold's load has
   // pressed the shaft against a wall (clearance_needs_a_wall says why).
@@ -238,8 +238,8 @@ void ComplianceFilter::Impl::ScalarUpdate(int j, Channel channel, const Vector& 
   // which the dead zone's smooth S(tau/w) stands in for; the EKF read it
   // sharply and wrongly (in a clamped-beam Monte Carlo trial, β 0.013 N·m
   // against a true −0.019, and the held tip 270 encoder counts off with a σ
-  // of 48; the clamped study's NEES 7.8, with this 1.9; docs/validation.md
-  // Part 4, "The bias offset as a consider state"). A reference (the tip
+  // of 48; the clamped study's NEES 7.8, with this 1.9; docs/decisions/
+  // 0007-filter-effort-offset-tare-and-clearance-from-a-wall.md). A reference (the tip
   // known) breaks the tie, and then the encoder and effort teach β; so does
   // a load known to be 0 (unloaded_start_s).
   if (consider & kConsiderOffset) k[kOffset] = 0.0;

@@ -85,14 +85,14 @@ double BacklashProcessVariance(const FilterOptions& o, double dt, bool tip_fixed
   // simulator's at a few hundredths of a N·m). Where is not known, so the
   // pull is uncertain in proportion to g·(1 − g): zero at no load (no pull)
   // and on the wall (no doubt). Without it the pull, taken as certain, put b
-  // short of the wall and dragged s down (docs/validation.md, Part 4).
+  // short of the wall and dragged s down (docs/filter.md, "The backlash step").
   // Free tip: c = 2. Each pull contracts b's variance by (1 − g)²; with
   // 2·g·(1 − g)·δ²/3 added, the stationary variance (1 − g)/(1 − g/2)·δ²/3 is
   // the prior's δ²/3 as g → 0, so the effort noise of a free tip at rest (g ≈
   // 10⁻³ a sample, a pull of random sign) cannot make b certain. Without it
   // b's σ fell from 0.58 δ to 0.07 δ in 0.3 s while b stayed where the shaft
   // was not: free-tip NEES 23.6 once the simulated shafts start anywhere in
-  // their clearance (docs/validation.md, Part 4, "Seventh pass").
+  // their clearance (docs/filter.md, "The backlash step").
   const double transit = (tip_fixed ? o.backlash_transit_noise : 2.0) * pinned * (1.0 - pinned) *
                          prior_variance;
   return (1.0 - pinned) * unloaded + transit +

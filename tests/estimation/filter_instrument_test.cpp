@@ -85,8 +85,8 @@ double MeanNeesOverDrawnInstruments(double clearance_sd_rad, double offset_sd_nm
 // On the filter's own model the travel is honest information, so the rule
 // costs nothing here. With every load counting (margin 0) all read 3.1–3.2:
 // the margin keeps a load within its noise from pulling the shaft.
-// Before session 15 the shafts started in the middle, the filter's mean,
-// and measured 1.96 with margin 0; told the clearance is exact, the filter
+// Started in the middle, the filter's mean, the shafts measured 1.96 with
+// margin 0; told the clearance is exact, the filter
 // is far overconfident.
 TEST(FilterInstrumentUncertainty, ClearanceSpreadReachesTheCovariance) {
   DrawnRuns how;
@@ -103,8 +103,9 @@ TEST(FilterInstrumentUncertainty, ClearanceSpreadReachesTheCovariance) {
 // The bias offset is a consider state of the held tip's encoder and effort:
 // its mean stays 0 and its doubt reaches the tip through s·K. Still above the
 // band: the dead zone's pull runs on tau's mean, which is off by β, and the
-// EKF takes the shifted pull as knowledge of b (docs/filter.md). Learned from
-// the crossing, as before session 12, it was 10.0.
+// EKF takes the shifted pull as knowledge of b (docs/decisions/
+// 0007-filter-effort-offset-tare-and-clearance-from-a-wall.md). Learned
+// from the crossing instead, β gave a NEES of 10.0.
 TEST(FilterInstrumentUncertainty, BiasOffsetSpreadReachesTheCovarianceInPart) {
   const double with_state = MeanNeesOverDrawnInstruments(0.0, kOffsetSdNm, 0.0, kOffsetSdNm);
   const double without = MeanNeesOverDrawnInstruments(0.0, 0.0, 0.0, kOffsetSdNm);

@@ -46,8 +46,8 @@ TEST(FilterScaleHold, ThreeWidthsStillTeachIt) {
 // (FilterOptions::bound_held_load_rate) it fell to 0.71: the EKF's
 // errors-in-variables bias on the bilinear term s·K·tau, whose ∂h/∂s is K·tau
 // at the estimated load, so that a load free to follow the effort noise made
-// that noise a regressor of s (the tests below; docs/validation.md, Part 4,
-// "The steady-hold drift of the compliance scale"). What is left at w is the
+// that noise a regressor of s (the tests below;
+// docs/decisions/0004-filter-held-load-rate.md). What is left at w is the
 // partial hold: there the bound applies only in part (g < 1).
 TEST(FilterScaleHold, DISABLED_AtTheWidthTheScaleHolds) {
   EXPECT_NEAR(ScaleAfterHold(FilterOptions().scale_hold_exponent, 1.0), 1.0, 0.05);

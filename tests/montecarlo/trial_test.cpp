@@ -123,8 +123,7 @@ TEST(RunTrial, CorrectionsRemoveMostOfTheDeflectionOfAKnownInstrument) {
 // The study's ε reaches the filter and only the filter: the same draw and
 // simulation (the uncorrected and equation (2) errors to the bit), another
 // filter estimate, and a wider covariance (NEES at the picked sample measured
-// 0.832 → 0.448 for ε 0.04 → 0.3; before session 14's model, 0.498 → 0.379
-// for ε 0.05 → 0.3).
+// 0.832 → 0.448 for ε 0.04 → 0.3).
 TEST(RunTrial, TheStudysDeflectionErrorReachesTheFilter) {
   const std::string instrument = R"({"compliance_scale": 1.2})";
   const TrialResult plain = RunTrial(ShortStudy(instrument), 0);

@@ -41,7 +41,7 @@ struct FilterOptions {
   /// behind the bend the encoder already showed; the same-sign innovation,
   /// sample after sample, went into s (divot trial 658: s 1.00 → 1.29 in
   /// 0.2 s against a true 1.02; with the input 1.06), and joint 1's interval
-  /// covered 91 % (docs/validation.md, Part 4, "The load follows the motor").
+  /// covered 91 % (docs/decisions/0006-filter-load-follows-the-motor.md).
   /// false: tau+ = tau, as a free tip's.
   bool load_follows_motor = true;
   /// true: a held tip's encoder teaches the clearance error e only once the
@@ -52,8 +52,8 @@ struct FilterOptions {
   /// starts on the wall it is pushed against shows no travel whatever its
   /// clearance; the Gaussian stand-in for the start read that as a narrow
   /// clearance (divot trial 505: e −0.84 mrad against a true +1.5, joint 2
-  /// off by 2.1 σ for the whole hold; docs/validation.md, Part 4, "The
-  /// effort's offset and the clearance's first wall"). false: e learns from
+  /// off by 2.1 σ for the whole hold; docs/decisions/
+  /// 0007-filter-effort-offset-tare-and-clearance-from-a-wall.md). false: e learns from
   /// every held sample.
   bool clearance_needs_a_wall = true;
   double held_load_rest_rate_nm = 0.01;   ///< σ_rest, N·m/√s: tissue relaxation, a slow slip
@@ -102,8 +102,8 @@ struct FilterOptions {
   /// effort carries g·c_s·θ̇ beyond the load, θ̇ the encoder's rate over the
   /// state's step; the filter takes it out with J·θ̈. Why: read as load, it
   /// is deflection that is not there, which ε had to cover (ε 0.08 without
-  /// it, 0.05 with it: DeflectionModelError(); docs/validation.md, Part 4,
-  /// "The shaft's damping").
+  /// it, 0.05 with it: DeflectionModelError(); docs/decisions/
+  /// 0005-filter-shaft-damping-and-deflection-error.md).
   /// 0 (the default): none; the simulator's instrument has 0.02.
   double shaft_damping_nm_s_per_rad = 0.0;
   double acceleration_filter_time_s = 0.004;
@@ -113,7 +113,7 @@ struct FilterOptions {
   /// sweeps' 0.25 mm steps) by a share of J·θ̈ that the white effort noise
   /// did not allow, and each step's misread moved s and the held tip
   /// (clamped study: joint 1 covered 88.6 %, with κ 0.3 94.9 %; docs/
-  /// validation.md, Part 4, "The load follows the motor"). 0: the fit is exact.
+  /// decisions/0006-filter-load-follows-the-motor.md). 0: the fit is exact.
   double inertial_torque_error = 0.3;
   /// With motor inertia (J > 0), run the filter's state that many samples
   /// behind the newest one that the fitted acceleration's lag (under a
@@ -123,7 +123,7 @@ struct FilterOptions {
   /// holds J·θ̈ now, the fit knows θ̈ of ~12 ms ago; in the clamped-beam sweeps
   /// (8 Hz arm oscillation after each step) that misfit was 2–3 times the
   /// effort noise, correlated over a move, and dragged the compliance scale
-  /// and the held tip (docs/filter.md, "Aligning the inertial torque").
+  /// and the held tip (docs/decisions/0002-filter-inertial-torque-alignment.md).
   /// The count of samples is the lag over sample_period_s: a log at another
   /// rate than the PSM's 1.5 kHz needs that period set to line up.
   /// false: process each sample as it comes (the inertial torque then lags).
@@ -133,8 +133,8 @@ struct FilterOptions {
   /// its motor inertia given: with its shaft damping given too, 0.05 puts the
   /// paper's pushes and continuous loads inside their NEES bands; without,
   /// the damping is part of what ε covers, and 0.08 keeps the paper's pushes
-  /// inside (docs/validation.md, Part 4, "The shaft's damping"; 0.075 before
-  /// bound_held_load_rate). NaN (the default): DeflectionModelError() picks
+  /// inside (docs/decisions/0005-filter-shaft-damping-and-deflection-error.md;
+  /// 0.075 without bound_held_load_rate). NaN (the default): DeflectionModelError() picks
   /// by shaft_damping_nm_s_per_rad.
   double deflection_model_error = kFromDamping;
   static constexpr double kFromDamping = std::numeric_limits<double>::quiet_NaN();
@@ -166,7 +166,7 @@ struct FilterOptions {
   /// shaft damping (≈ 10⁻⁴ N·m) taken out of the effort, s fell 1.0 → 0.74,
   /// the clearance error went to −δ and the tip 4 mm off; with this gate it
   /// stays under 1 mm. 4 (with ε = 0.075): the identify study's NEES 3.14 →
-  /// 2.05, inside its band (docs/validation.md, Part 4, "Coverage by joint").
+  /// 2.05, inside its band (docs/decisions/0003-filter-compliance-scale-learns-on-the-wall.md).
   /// 0: every sure load teaches s. What it does not stop: through a long
   /// steady hold near w, s still drifts toward 0 (the EKF's errors-in-variables
   /// bias on s·K·tau, which bound_held_load_rate shrinks from 1.5 w up;
@@ -188,8 +188,9 @@ struct FilterOptions {
   /// s·K(L). Off by default: learned, β made the divot and clamped-beam tips
   /// worse and their corrected angles jumpy; as a consider state it is worse
   /// still on those logs (divot 0.277 mm against 0.037 off, with σ_β from
-  /// identification; docs/validation.md Part 4, "The bias offset as a
-  /// consider state"). Turn it on with a reference, or to study its doubt.
+  /// identification; docs/decisions/
+  /// 0007-filter-effort-offset-tare-and-clearance-from-a-wall.md). Turn it
+  /// on with a reference, or to study its doubt.
   Eigen::Vector2d effort_offset_sd_nm{0.0, 0.0};
   double effort_offset_rate_nm = 0.0;     ///< σ_β̇, N·m/√s (0: a constant offset)
   /// β's mean stays within ±this × σ_β. Why: a held tip tells β from the load

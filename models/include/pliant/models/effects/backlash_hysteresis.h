@@ -21,7 +21,7 @@
 // from 2w to w/2 leaves it on its wall, as a real clearance does; pulling it
 // back to p (the dead-zone position) was evidence the filter counted afresh
 // every sample while the load held, and it drove the compliance scale and
-// the held tip away (docs/validation.md, Part 4, "Partial loads"). r in [0, 1] is the
+// the held tip away (docs/filter.md, "The backlash step"). r in [0, 1] is the
 // fraction by which an unloaded shaft forgets its wall in this sample
 // (the filter: r = 1 − exp(−|Δq|/(c·δ)) for an encoder increment Δq; 0: it
 // never does): nothing holds an unloaded shaft on a wall, so as the arm moves
@@ -65,7 +65,7 @@ T BacklashHold(const T& external_torque_nm, double width_nm) {
 /// the target (up to 2δ) tied b to every effort sample's noise, a correlation
 /// a clearance does not have — a shaft's place does not follow the size of a
 /// small load. Through it the held tip and b drifted by δ over a few seconds
-/// of an unloaded joint (docs/validation.md, Part 4, "Seventh pass").
+/// of an unloaded joint (docs/filter.md, "The backlash step").
 template <typename T, typename Delta, typename Hold>
 T BacklashHysteresisStep(const T& offset_rad, const T& external_torque_nm, const Delta& delta_rad,
                          double width_nm, double relax, const Hold& hold) {
