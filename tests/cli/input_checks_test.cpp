@@ -98,24 +98,31 @@ TEST(Plausibility, TimeInMillisecondsIsRefusedAndAnHourLongGapWarned) {
       << warned.err;
 }
 
-TEST(Identify, ThePapersMethodNeverWritesANegativeClearance) {
-  const auto dir = FreshDirectory("checks_negative_backlash");
+// Without a bias sweep the paper's procedure would keep the prior's bias
+// table with no uncertainty (before: K1 +25 % at 48σ and a negative clearance,
+// exit 0); it is refused, and nothing is written.
+TEST(Identify, ThePapersMethodNeedsABiasSweep) {
+  const auto dir = FreshDirectory("checks_paper_no_sweep");
   const auto r = RunCommand(kCli + " identify --method paper " + kSource +
                                 "/data/clamped_beam.csv -o " + Quoted(dir / "p.json"),
                             dir);
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  // Before: "value": -0.0024 for joint 1. Both joints' lines cross on this log.
-  const std::string text = ReadText(dir / "p.json");
-  EXPECT_EQ(text.find("\"value\": -"), std::string::npos) << text;
-  EXPECT_NE(r.err.find("warning: joint 1: the loading and unloading lines cross (half their gap "
-                       "-0.00239"),
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("/data/clamped_beam.csv: the paper's procedure starts from a bias sweep "
+                       "(rows with the tip free), and these logs have none for joint 1"),
             std::string::npos)
       << r.err;
-  EXPECT_NE(r.err.find("a clearance cannot be negative, so delta1 is written as 0"),
-            std::string::npos);
-  // params and correct read what identify wrote.
-  EXPECT_EQ(RunCommand(kCli + " params " + Quoted(dir / "p.json") + " --depth 0.15", dir).exit_code,
-            0);
+  EXPECT_NE(r.err.find(" — add the bias-sweep log (e.g. data/bias_sweep.csv), or use --method "
+                       "smoother"),
+            std::string::npos)
+      << r.err;
+  EXPECT_FALSE(fs::exists(dir / "p.json"));
+  // With the sweep it runs (and both clearances come out positive).
+  const auto with = RunCommand(kCli + " identify --method paper " + kSource +
+                                   "/data/bias_sweep.csv " + kSource + "/data/clamped_beam.csv -o " +
+                                   Quoted(dir / "p.json"),
+                               dir);
+  ASSERT_EQ(with.exit_code, 0) << with.err;
+  EXPECT_EQ(ReadText(dir / "p.json").find("\"value\": -"), std::string::npos);
 }
 
 TEST(Identify, ADivotLogAloneIsBadInputWithoutLibraryChatter) {
