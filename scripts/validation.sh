@@ -11,8 +11,8 @@
 # reference machine under load (nice -n 19). It simulates 0.5 GB of logs into the work
 # directory (default: a new directory under /tmp, removed at the end unless --work is
 # given). --long adds the Monte Carlo studies of section 8, with 2 threads: divot 16 s,
-# known instrument 4 s, clamped 145 s; identify is not timed at this commit (each of its
-# 200 trials simulates and identifies a calibration: about 5 minutes when first measured).
+# known instrument 4 s, clamped 127-145 s, identify 401 s (each of its
+# 200 trials simulates and identifies a calibration).
 #
 # The real-data score (section 3) needs clamped_cv.py (docs/real-data.md); set CLAMPED_CV
 # to its path if it is not at /work/shared/tools/clamped_cv.py. Without it that step is
