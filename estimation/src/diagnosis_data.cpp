@@ -8,6 +8,7 @@
 #include "diagnosis_internal.h"
 #include "pliant/io/input_error.h"
 #include "pliant/models/psm_kinematics.h"
+#include "pliant/models/travel_since_reversal.h"
 
 namespace pliant::estimation::diagnosis {
 namespace {
@@ -122,7 +123,12 @@ std::vector<Sample> CollectSamples(const io::Log& log, const io::StandardColumns
   std::vector<Sample> all;
   int run = -1;
   bool previous_kept = false;
+  // The held-friction effect's state, fed every row (kept or not) as correct
+  // and the filter feed it: the travel since the joint last reversed.
+  models::TravelSinceReversal travel;
   for (std::size_t r = 0; r < log.Rows(); ++r) {
+    const Eigen::Vector2d travel_rad =
+        travel.Update(Eigen::Vector2d(log.Value(r, q[0]), log.Value(r, q[1])));
     const bool fixed = c.tip_fixed >= 0 && log.Value(r, c.tip_fixed) > 0.5;
     const bool keep = problem.profile_tip ? fixed : (c.tip_fixed < 0 || fixed);
     if (keep && !previous_kept) ++run;
@@ -142,6 +148,7 @@ std::vector<Sample> CollectSamples(const io::Log& log, const io::StandardColumns
     }
     s.state.insertion_depth_m = log.Value(r, c.q3);
     s.state.time_s = log.Value(r, c.t);
+    s.state.travel_since_reversal_rad = travel_rad;
     if (!s.state.encoder_angle_rad.allFinite() || !std::isfinite(s.state.insertion_depth_m) ||
         !effort.allFinite() || !s.reference_rad.allFinite())
       continue;
