@@ -5,6 +5,8 @@
 #   R1. identifies joints 1 and 2 from the real bias sweeps and clamped beams
 #       (the held friction included; the paper's Fig. 6 redrawn);
 #   R2. corrects the real clamped beam of joint 1 with the identified file;
+#   R3. diagnoses that real log against the paper's form (identified without
+#       the held friction): which effect the real data show that it lacks;
 # then the simulated showcase, where the truth is known:
 #   1. identifies the instrument from the simulated calibration logs (bias
 #      sweep + clamped beam), with the covariance of every parameter;
@@ -32,6 +34,12 @@ sed -n -e '/clearance/p' out/real_identify_warnings.txt
 echo
 echo "== R2. correct: the real clamped beam of joint 1 with the identified file"
 $pliant correct --params out/real.json $real/jhu2017_clamped_j1.csv -o out/real_clamped_j1.csv
+echo
+echo "== R3. diagnose: the real clamped beam of joint 1 against the paper's form"
+$pliant identify --no-held-friction $real/jhu2017_bias_j1.csv $real/jhu2017_clamped_j1.csv \
+  -o out/real_paper_form.json > /dev/null 2>&1
+$pliant diagnose --params out/real_paper_form.json $real/jhu2017_clamped_j1.csv \
+  -o out/real_diagnosis | sed -n -e '1,4p' -e '/candidate effects/,/^    3\./p'
 echo
 echo "== 1. identify: calibration logs -> out/identified.json"
 $pliant identify data/bias_sweep.csv data/clamped_beam.csv -o out/identified.json \
