@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <future>
 #include <stdexcept>
 
 namespace pliant::estimation {
@@ -29,7 +30,7 @@ void CheckpointedSmoother::Count() {
   ++records_;
   if (records_ % block_ != 0) return;
   checkpoints_.push_back({filter_, samples_, last_depth_m_});
-  if (checkpoints_.size() * kRecordsPerCheckpoint <= block_ || checkpoints_.size() < 64) return;
+  if (checkpoints_.size() * kRecordsPerCheckpoint <= block_ || checkpoints_.size() <= kMinCheckpoints) return;
   // Too many checkpoints for the block: keep every other, blocks twice as long.
   std::size_t kept = 0;
   for (std::size_t i = 0; i < checkpoints_.size(); i += 2) {
@@ -44,7 +45,8 @@ void CheckpointedSmoother::Count() {
 // Block b's records, filtered, rebuilt from its checkpoint: the filter makes
 // one record per sample once it holds alignment_steps() samples, and the
 // held ones at the log's end.
-void CheckpointedSmoother::RecomputeBlock(std::size_t b, const ReadSamples& read) {
+void CheckpointedSmoother::RecomputeBlock(std::size_t b, const ReadSamples& read,
+                                          std::vector<SmootherStep>* steps) {
   const Checkpoint& checkpoint = checkpoints_[b];
   const std::size_t first = b * block_;
   const std::size_t count = std::min(block_, records_ - first);
@@ -52,19 +54,19 @@ void CheckpointedSmoother::RecomputeBlock(std::size_t b, const ReadSamples& read
   const std::size_t lead = std::size_t(std::max(filter.alignment_steps(), 0));
   read(checkpoint.next_sample, std::min(count + lead, samples_ - checkpoint.next_sample),
        &samples_buffer_);
-  steps_.clear();
+  steps->clear();
   double depth = checkpoint.last_depth_m;
   const auto record = [&] {
-    steps_.push_back(RecordStep(filter, depth, first + steps_.size() == 0));
-    depth = steps_.back().depth_m;
+    steps->push_back(RecordStep(filter, depth, first + steps->size() == 0));
+    depth = steps->back().depth_m;
   };
   for (const FilterSample& sample : samples_buffer_) {
-    if (steps_.size() == count) break;
+    if (steps->size() == count) break;
     filter.Step(sample);
     if (filter.advanced()) record();
   }
-  while (steps_.size() < count && filter.StepHeldSample()) record();
-  if (steps_.size() != count) throw std::logic_error("CheckpointedSmoother: a block came out short");
+  while (steps->size() < count && filter.StepHeldSample()) record();
+  if (steps->size() != count) throw std::logic_error("CheckpointedSmoother: a block came out short");
 }
 
 void CheckpointedSmoother::Smooth(const ReadSamples& read, const TakeBlock& take) {
@@ -73,14 +75,25 @@ void CheckpointedSmoother::Smooth(const ReadSamples& read, const TakeBlock& take
   const std::size_t blocks = (records_ + block_ - 1) / block_;
   SmootherStep next;
   std::vector<FilterEstimate> estimates;
+  std::vector<SmootherStep> steps, upcoming;
+  RecomputeBlock(blocks - 1, read, &steps);
   for (std::size_t b = blocks; b-- > 0;) {
-    RecomputeBlock(b, read);
-    if (b + 1 < blocks) SmoothStep(&steps_.back(), next);
-    for (std::size_t k = steps_.size() - 1; k-- > 0;) SmoothStep(&steps_[k], steps_[k + 1]);
-    next = steps_.front();
-    estimates.resize(steps_.size());
-    std::transform(steps_.begin(), steps_.end(), estimates.begin(), StepEstimate);
+    // The block before is recomputed on a second thread meanwhile (it needs
+    // only its checkpoint): the two halves of the work overlap.
+    std::future<void> before;
+    if (b > 0) {
+      before = std::async(std::launch::async, [&, b] { RecomputeBlock(b - 1, read, &upcoming); });
+    }
+    if (b + 1 < blocks) SmoothStep(&steps.back(), next);
+    for (std::size_t k = steps.size() - 1; k-- > 0;) SmoothStep(&steps[k], steps[k + 1]);
+    next = steps.front();
+    estimates.resize(steps.size());
+    std::transform(steps.begin(), steps.end(), estimates.begin(), StepEstimate);
     take(b * block_, estimates);
+    if (b > 0) {
+      before.get();
+      std::swap(steps, upcoming);
+    }
   }
 }
 

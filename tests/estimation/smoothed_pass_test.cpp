@@ -155,11 +155,12 @@ TEST(CheckpointedSmoother, ThinsItsCheckpointsAsTheLogGrows) {
   CheckpointedSmoother smoother(p, FilterOptions{}, 16);
   const auto samples = EventfulLog(20000);
   for (const auto& s : samples) smoother.Add(s);
-  // 64 checkpoints of blocks of 16 is 1024 records: then 32 of 32, … The
-  // count stays ≤ max(64, B / 8) + 1.
-  EXPECT_GT(smoother.block_records(), 16u);
+  // 64 checkpoints of blocks of 16 are 1024 records: then 33 of 32, … up
+  // to blocks of 512 (64 of them would be 32,768 records).
+  EXPECT_EQ(smoother.block_records(), 512u);
   EXPECT_LE(smoother.checkpoints(),
-            std::max<std::size_t>(64, smoother.block_records() / 8) + 1);
+            std::max(CheckpointedSmoother::kMinCheckpoints,
+                     smoother.block_records() / CheckpointedSmoother::kRecordsPerCheckpoint));
   EXPECT_GE(smoother.checkpoints() * smoother.block_records(), samples.size());
 }
 
