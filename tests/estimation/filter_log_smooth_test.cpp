@@ -3,6 +3,8 @@
 // shipped divot push (over 12,000 rows: a dozen blocks of 1024) with the motor
 // inertia aligned (held samples at the log's end).
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -10,6 +12,7 @@
 #include "../support/paper_parameters.h"
 #include "pliant/estimation/filter_log.h"
 #include "pliant/estimation/filter_smoother.h"
+#include "pliant/io/input_error.h"
 #include "pliant/io/log.h"
 #include "run_command.h"
 
@@ -57,6 +60,26 @@ TEST(FilterLogSmooth, WritesFilterSmoothersEstimatesToTheBit) {
   EXPECT_GT(largest_step, 0.0);
   // The smoothed tip error is over every row against the reference.
   EXPECT_EQ(summary.smoothed_error.count(), summary.filtered.count());
+}
+
+// A bad row deep in the log (after several blocks' worth of rows) is found on
+// the forward pass: an InputError naming its line, and no output written.
+TEST(FilterLogSmooth, ABadRowLeavesNoOutput) {
+  const auto dir = pliant::testing::FreshDirectory("filter_log_smooth_bad");
+  const auto bad = (dir / "bad.csv").string(), out = (dir / "out.csv").string();
+  {
+    std::ifstream in(kPush);
+    std::ofstream copy(bad);
+    std::string line;
+    for (int n = 1; std::getline(in, line); ++n) copy << (n == 5000 ? "1,2,x" : line) << "\n";
+  }
+  try {
+    FilterLog(bad, out, models::testing::PaperParameters(), FilterOptions{}, true, "test");
+    ADD_FAILURE() << "no error";
+  } catch (const io::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("bad.csv:5000"), std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(std::filesystem::exists(out));
 }
 
 }  // namespace
