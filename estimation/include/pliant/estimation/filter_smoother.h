@@ -19,7 +19,8 @@
 // `filter --smooth` 73.8 s (2.4×) and 73 MB; an earlier run 43.3 s against
 // 88.3 s (2.0×). 10⁶ simulated free-motion rows: 4.4 s / 24 MB against
 // 8.3 s / 42 MB, where this class (the whole log in memory) took 14.1 s and
-// 1.17 GB.
+// 1.17 GB. bench/long_log_memory.sh, 10⁷ free-motion rows: 50 s / 147 MB
+// against 102 s (2.0×) / 148 MB (the reader's and writer's share dominates).
 // Not real-time: this is for offline tools.
 
 #include <cstddef>
