@@ -8,6 +8,8 @@
 
 #include "pliant/estimation/filter_smoother.h"
 #include "pliant/io/log_writer.h"
+#include "scratch_file.h"
+#include "smoothed_pass.h"
 
 namespace pliant::estimation {
 namespace {
@@ -123,6 +125,94 @@ FilterSample SampleFromRow(const io::StandardColumns& c, const double* row) {
   return s;
 }
 
+namespace {
+
+// Each row's smoothed values as the scratch file holds them: the output
+// columns, then the corrected angles (the accuracy needs them, also where an
+// unrecorded joint's column is empty).
+constexpr std::size_t kSmoothedValues = 11;
+constexpr std::size_t kChunkRows = 4096;  // rows read back from scratch at a time
+
+// The smoothed pass in bounded memory (smoothed_pass.h): the input rows are
+// spooled to a scratch file as they stream in (they are read again backward,
+// block by block, and once more for the output), the smoothed values go to a
+// second one at each row's place, and the output is written in order last.
+LogFilterSummary SmoothLog(const std::string& input_path, const std::string& output_path,
+                           const models::ModelParameters& parameters, const FilterOptions& options,
+                           const std::string& metadata_note, io::LogReaderOptions read_options,
+                           LogFilterSummary* summary) {
+  io::LogReader reader(input_path, read_options);
+  io::LogHeader header = reader.header();
+  const io::StandardColumns in(header);
+  const std::size_t input_columns = header.columns.size();
+  const FilterOptions used = OptionsForLog(options, header, summary);
+  OutputColumns out(header);
+  out.recorded[0] = used.joint_recorded[0];
+  out.recorded[1] = used.joint_recorded[1];
+  if (!metadata_note.empty()) {
+    header.metadata.emplace_back("filter", Note(metadata_note, *summary) + ", RTS smoothed");
+  }
+  CheckpointedSmoother smoother(parameters, used);
+  ScratchFile input_rows("the input rows"), smoothed("the smoothed values");
+  Tally tally(summary, in);
+  std::size_t rows = 0;
+  while (const double* values = reader.Next()) {
+    input_rows.Append(values, input_columns);
+    const FilterEstimate e = smoother.Add(SampleFromRow(in, values));
+    tally.Count(e);
+    tally.Accuracy(values, e, &summary->filtered, true);
+    ++rows;
+  }
+  summary->skipped_rows = reader.skipped_rows();
+
+  std::vector<double> block_rows, row(header.columns.size()), block_values;
+  const auto read = [&](std::size_t first, std::size_t count, std::vector<FilterSample>* samples) {
+    block_rows.resize(count * input_columns);
+    input_rows.Read(first * input_columns, block_rows.size(), block_rows.data());
+    samples->clear();
+    for (std::size_t r = 0; r < count; ++r) {
+      samples->push_back(SampleFromRow(in, &block_rows[r * input_columns]));
+    }
+  };
+  const auto take = [&](std::size_t first, const std::vector<FilterEstimate>& estimates) {
+    block_values.resize(estimates.size() * kSmoothedValues);
+    for (std::size_t k = 0; k < estimates.size(); ++k) {
+      double* values = &block_values[k * kSmoothedValues];
+      std::fill(row.begin(), row.end(), 0.0);
+      out.Fill(estimates[k], row.data());
+      std::copy(row.begin() + std::ptrdiff_t(input_columns), row.end(), values);
+      values[9] = estimates[k].corrected_rad[0];
+      values[10] = estimates[k].corrected_rad[1];
+    }
+    smoothed.Write(first * kSmoothedValues, block_values.data(), block_values.size());
+  };
+  smoother.Smooth(read, take);
+
+  io::LogWriter writer(output_path, header);
+  for (std::size_t first = 0; first < rows; first += kChunkRows) {
+    const std::size_t count = std::min(kChunkRows, rows - first);
+    block_rows.resize(count * input_columns);
+    input_rows.Read(first * input_columns, block_rows.size(), block_rows.data());
+    block_values.resize(count * kSmoothedValues);
+    smoothed.Read(first * kSmoothedValues, block_values.size(), block_values.data());
+    for (std::size_t r = 0; r < count; ++r) {
+      const double* values = &block_rows[r * input_columns];
+      const double* smoothed_values = &block_values[r * kSmoothedValues];
+      std::copy(values, values + input_columns, row.begin());
+      std::copy(smoothed_values, smoothed_values + 9, row.begin() + std::ptrdiff_t(input_columns));
+      writer.Write(row.data());
+      FilterEstimate e;
+      e.corrected_rad << smoothed_values[9], smoothed_values[10];
+      tally.Accuracy(values, e, &summary->smoothed_error, false);
+    }
+  }
+  writer.Commit();
+  tally.Finish();
+  return *summary;
+}
+
+}  // namespace
+
 LogFilterSummary FilterLog(const std::string& input_path, const std::string& output_path,
                            const models::ModelParameters& parameters,
                            const FilterOptions& options, bool smooth,
@@ -157,41 +247,8 @@ LogFilterSummary FilterLog(const std::string& input_path, const std::string& out
     return summary;
   }
 
-  io::Log log = io::ReadLog(input_path, read_options);
-  const io::StandardColumns in(log.header);
-  io::LogHeader header = log.header;
-  const std::size_t input_columns = header.columns.size();
-  const FilterOptions used = OptionsForLog(options, header, &summary);
-  OutputColumns out(header);
-  out.recorded[0] = used.joint_recorded[0];
-  out.recorded[1] = used.joint_recorded[1];
-  if (!metadata_note.empty()) {
-    header.metadata.emplace_back("filter", Note(metadata_note, summary) + ", RTS smoothed");
-  }
-  FilterSmoother smoother(parameters, used);
-  const std::size_t rows = log.Rows();
-  smoother.Reserve(rows);
-  Tally tally(&summary, in);
-  for (std::size_t r = 0; r < rows; ++r) {
-    const double* values = &log.values[r * input_columns];
-    const FilterEstimate e = smoother.Add(SampleFromRow(in, values));
-    tally.Count(e);
-    tally.Accuracy(values, e, &summary.filtered, true);
-  }
-  smoother.Smooth();
-  io::LogWriter writer(output_path, header);
-  std::vector<double> row(header.columns.size());
-  for (std::size_t r = 0; r < rows; ++r) {
-    const double* values = &log.values[r * input_columns];
-    std::copy(values, values + input_columns, row.begin());
-    const FilterEstimate e = smoother.Estimate(r);
-    out.Fill(e, row.data());
-    writer.Write(row.data());
-    tally.Accuracy(values, e, &summary.smoothed_error, false);
-  }
-  writer.Commit();
-  tally.Finish();
-  return summary;
+  return SmoothLog(input_path, output_path, parameters, options, metadata_note, read_options,
+                   &summary);
 }
 
 }  // namespace pliant::estimation

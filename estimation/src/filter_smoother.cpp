@@ -35,6 +35,46 @@ Matrix Predicted(const Matrix& p, const FilterTransition& t) {
 
 }  // namespace
 
+SmootherStep RecordStep(const ComplianceFilter& filter, double previous_depth_m, bool first) {
+  SmootherStep record;
+  for (int j = 0; j < 2; ++j) {
+    record.state[j] = filter.joint_state(j);
+    record.transition[j] = filter.transition(j);
+  }
+  const FilterSample& sample = filter.state_sample();
+  const FilterEstimate& estimate = filter.state_estimate();
+  record.encoder_rad = sample.encoder_rad;
+  record.depth_m = std::isfinite(sample.insertion_depth_m) || first ? sample.insertion_depth_m
+                                                                     : previous_depth_m;
+  record.nis = estimate.nis;
+  record.nis_dof = estimate.nis_dof;
+  record.flags = estimate.flags;
+  return record;
+}
+
+void SmoothStep(SmootherStep* here, const SmootherStep& next) {
+  for (int j = 0; j < 2; ++j) {
+    const FilterTransition& transition = next.transition[j];
+    if (!transition.predicted) continue;  // a restart: nothing links k to k+1
+    FilterJointState& state = here->state[j];
+    const Matrix p_pred = Predicted(state.covariance, transition);
+    const Matrix f = TransitionMatrix(transition);
+    // C = P̂ Fᵀ (P⁻)⁻¹ = ((P⁻)⁻¹ F P̂)ᵀ, P⁻ and P̂ symmetric.
+    const Matrix gain = p_pred.ldlt().solve(f * state.covariance).transpose();
+    state.mean += gain * (next.state[j].mean - transition.predicted_mean);
+    state.covariance += gain * (next.state[j].covariance - p_pred) * gain.transpose();
+    state.covariance = 0.5 * (state.covariance + state.covariance.transpose()).eval();
+  }
+}
+
+FilterEstimate StepEstimate(const SmootherStep& r) {
+  FilterEstimate e = MakeEstimate(r.state[0], r.state[1], r.encoder_rad, r.depth_m);
+  e.nis = r.nis;
+  e.nis_dof = r.nis_dof;
+  e.flags = r.flags;
+  return e;
+}
+
 FilterSmoother::FilterSmoother(const models::ModelParameters& parameters,
                                const FilterOptions& options)
     : filter_(parameters, options) {}
@@ -51,21 +91,8 @@ FilterEstimate FilterSmoother::Add(const FilterSample& sample) {
 // One record per sample the filter's state has reached (with motor inertia
 // it runs alignment_steps() behind Add's newest).
 void FilterSmoother::Record() {
-  StepRecord record;
-  for (int j = 0; j < 2; ++j) {
-    record.joint[j].state = filter_.joint_state(j);
-    record.joint[j].transition = filter_.transition(j);
-  }
-  const FilterSample& sample = filter_.state_sample();
-  const FilterEstimate& estimate = filter_.state_estimate();
-  record.encoder_rad = sample.encoder_rad;
-  record.depth_m = std::isfinite(sample.insertion_depth_m) || steps_.empty()
-                       ? sample.insertion_depth_m
-                       : steps_.back().depth_m;
-  record.nis = estimate.nis;
-  record.nis_dof = estimate.nis_dof;
-  record.flags = estimate.flags;
-  steps_.push_back(record);
+  const bool first = steps_.empty();
+  steps_.push_back(RecordStep(filter_, first ? 0.0 : steps_.back().depth_m, first));
 }
 
 void FilterSmoother::Smooth() {
@@ -74,30 +101,8 @@ void FilterSmoother::Smooth() {
     smoothed_ = true;
     return;
   }
-  for (std::size_t k = steps_.size() - 1; k-- > 0;) {
-    for (int j = 0; j < 2; ++j) {
-      const JointRecord& next = steps_[k + 1].joint[j];
-      if (!next.transition.predicted) continue;  // a restart: nothing links k to k+1
-      FilterJointState& here = steps_[k].joint[j].state;
-      const Matrix p_pred = Predicted(here.covariance, next.transition);
-      const Matrix f = TransitionMatrix(next.transition);
-      // C = P̂ Fᵀ (P⁻)⁻¹ = ((P⁻)⁻¹ F P̂)ᵀ, P⁻ and P̂ symmetric.
-      const Matrix gain = p_pred.ldlt().solve(f * here.covariance).transpose();
-      here.mean += gain * (next.state.mean - next.transition.predicted_mean);
-      here.covariance += gain * (next.state.covariance - p_pred) * gain.transpose();
-      here.covariance = 0.5 * (here.covariance + here.covariance.transpose()).eval();
-    }
-  }
+  for (std::size_t k = steps_.size() - 1; k-- > 0;) SmoothStep(&steps_[k], steps_[k + 1]);
   smoothed_ = true;
-}
-
-FilterEstimate FilterSmoother::Estimate(std::size_t k) const {
-  const StepRecord& r = steps_.at(k);
-  FilterEstimate e = MakeEstimate(r.joint[0].state, r.joint[1].state, r.encoder_rad, r.depth_m);
-  e.nis = r.nis;
-  e.nis_dof = r.nis_dof;
-  e.flags = r.flags;
-  return e;
 }
 
 }  // namespace pliant::estimation
