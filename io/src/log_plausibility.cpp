@@ -136,7 +136,17 @@ class Checker {
 
   void AddStep(const double* row) {
     const double dt = row[t_] - previous_[t_];
-    steps_.push_back(dt);
+    // The median step from a systematic sample of at most kStepSample steps
+    // (every stride_-th; the stride doubles when the sample fills), so that
+    // the check's memory stays bounded on a log of any length.
+    if (step_count_++ % stride_ == 0) {
+      steps_.push_back(dt);
+      if (steps_.size() == kStepSample) {
+        for (std::size_t i = 0; i < kStepSample / 2; ++i) steps_[i] = steps_[2 * i];
+        steps_.resize(kStepSample / 2);
+        stride_ *= 2;
+      }
+    }
     if (dt > largest_gap_) largest_gap_ = dt, gap_line_ = reader_.line();
     for (int j = 0; j < 2 && !quasi_static_; ++j) {
       if (v_[j] < 0) continue;
@@ -202,6 +212,8 @@ class Checker {
   double hold_segment_ = 0.0;
   std::array<std::vector<double>, 2> slopes_;
   std::vector<double> steps_;
+  static constexpr std::size_t kStepSample = 1 << 16;
+  std::size_t step_count_ = 0, stride_ = 1;
   double largest_gap_ = 0.0;
   std::size_t gap_line_ = 0;
 };
