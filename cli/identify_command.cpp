@@ -72,6 +72,13 @@ void DrawFigure(const estimation::IdentificationResult& r, const std::string& pa
   experiments::WriteFigure(figure, path);
 }
 
+// The logs, as an error message names them all (the fit reads them together).
+std::string JoinedPaths(const std::vector<std::string>& logs) {
+  std::string files;
+  for (const auto& log : logs) files += (files.empty() ? "" : ", ") + log;
+  return files;
+}
+
 // Parameters the smoother cannot make usable (K outside its physical band, a
 // cubic crossing zero) come from logs that do not determine them: bad input
 // (exit 2), with what to record instead.
@@ -85,9 +92,7 @@ estimation::IdentificationResult RunSmootherOn(const estimation::IdentificationD
     const std::string what = e.what();
     const std::string prefix = "the identified parameters are not usable (";
     if (what.rfind(prefix, 0) != 0) throw;
-    std::string files;
-    for (const auto& log : logs) files += (files.empty() ? "" : ", ") + log;
-    throw io::InputError(files, 0, 0,
+    throw io::InputError(JoinedPaths(logs), 0, 0,
                          "these logs do not determine the parameters: the fit gives " +
                              what.substr(prefix.size(), what.rfind(')') - prefix.size()),
                          "identify from a clamped-beam log over several depths (and a bias "
@@ -108,9 +113,7 @@ void RequireBiasSweep(const estimation::IdentificationData& data,
       (s.tip_fixed ? held : free) = true;
     }
     if (!held || free) continue;
-    std::string files;
-    for (const auto& log : logs) files += (files.empty() ? "" : ", ") + log;
-    throw io::InputError(files, 0, 0,
+    throw io::InputError(JoinedPaths(logs), 0, 0,
                          "the paper's procedure starts from a bias sweep (rows with the tip free), "
                          "and these logs have none for joint " + std::to_string(j + 1) +
                              ": its bias torque would be the prior's, with no uncertainty, and K "
@@ -163,9 +166,7 @@ void RunIdentify(const IdentifyOptions& options) {
   const std::string method =
       options.method != "auto" ? options.method : (all_quasi_static ? "quasi_static" : "smoother");
   if (method == "smoother" && !both_joints) {
-    std::string files;
-    for (const auto& log : options.logs) files += (files.empty() ? "" : ", ") + log;
-    throw io::InputError(files, 0, 0,
+    throw io::InputError(JoinedPaths(options.logs), 0, 0,
                          "the joint smoother needs both joints recorded in every log, and these "
                          "logs record one joint each",
                          "use --method quasi_static (or auto)");
