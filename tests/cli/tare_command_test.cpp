@@ -111,5 +111,81 @@ TEST(CorrectTare, TaresTheShiftAwayAndSaysSo) {
   EXPECT_LT(MaxDifference(tared, plain, "q2_corr"), 1e-12);
 }
 
+// The filter tared on the shifted log runs the tared parameters: it recovers
+// the shift within the σ it states, and its corrected joints are those of the
+// filter on the unshifted log with the parameters' own (true) bias.
+TEST(FilterTare, RecoversAKnownShiftAndFiltersAsWithTheTrueBias) {
+  const auto dir = FreshDirectory("tare_filter");
+  const auto shifted = ShiftedLog(dir);
+  const auto tared = (dir / "tared.csv").string(), truth = (dir / "truth.csv").string(),
+             untared = (dir / "untared.csv").string();
+  const std::string params = " --params " + kParams + " ";
+  const auto r = RunCommand(kCli + " filter --tare auto" + params + shifted + " -o " + tared, dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (int j = 1; j <= 2; ++j) {
+    const auto [offset, sd] = StatedOffset(r.out, j);
+    EXPECT_GT(sd, 0.0);
+    EXPECT_LE(std::abs(offset - kShiftNm[j - 1]), 2.0 * sd) << r.out;
+  }
+  EXPECT_NE(r.out.find(kDisagree), std::string::npos) << r.out;
+  EXPECT_NE(io::ReadLog(tared).header.Metadata("filter").find("bias tared on the log: joint 1 "
+                                                              "+0.0799 ± 0.0003 N·m"),
+            std::string::npos);
+  ASSERT_EQ(RunCommand(kCli + " filter" + params + kLog + " -o " + truth, dir).exit_code, 0);
+  ASSERT_EQ(RunCommand(kCli + " filter" + params + shifted + " -o " + untared, dir).exit_code, 0);
+  // Untared, the shift moves the corrected joints by up to 15 mrad (joint 1);
+  // tared, they stay within 0.1 mrad of the true bias's.
+  EXPECT_GT(MaxDifference(untared, truth, "q1_corr"), 1e-2);
+  EXPECT_LT(MaxDifference(tared, truth, "q1_corr"), 1e-4);
+  EXPECT_LT(MaxDifference(tared, truth, "q2_corr"), 1e-4);
+}
+
+// On the unshifted log the tare finds noise (±0.0003 N·m) and says nothing of
+// a disagreement; the filter on the shifted and the unshifted log, both
+// tared, is the same filter to rounding (one tared model).
+TEST(FilterTare, NoDisagreementWithoutAShiftAndTheSameModelEitherWay) {
+  const auto dir = FreshDirectory("tare_filter_plain");
+  const auto shifted = ShiftedLog(dir);
+  const auto a = (dir / "a.csv").string(), b = (dir / "b.csv").string();
+  const std::string params = " --tare auto --params " + kParams + " ";
+  const auto r = RunCommand(kCli + " filter" + params + kLog + " -o " + a, dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("tare joint 1: 848 unloaded rows"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find(kDisagree), std::string::npos) << r.out;
+  ASSERT_EQ(RunCommand(kCli + " filter" + params + shifted + " -o " + b, dir).exit_code, 0);
+  EXPECT_LT(MaxDifference(a, b, "q1_corr"), 1e-12);
+  EXPECT_LT(MaxDifference(a, b, "q2_corr"), 1e-12);
+}
+
+// Bad --tare input: exit 2, FILE:… — …, and an existing output untouched.
+void ExpectRefused(const std::string& command, const std::string& message,
+                   const std::string& directory) {
+  const auto dir = FreshDirectory(directory);
+  const auto out = (dir / "out.csv").string();
+  { std::ofstream(out) << "keep me\n"; }
+  const auto r = RunCommand(command + " -o " + out, dir);
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find(message), std::string::npos) << r.err;
+  EXPECT_EQ(ReadText(out), "keep me\n");
+}
+
+TEST(FilterTare, RefusesARangeWithNoRowsStandardInputAndUnloadedStart) {
+  const std::string params = " --params " + kParams + " ";
+  for (const char* command : {"filter", "correct"}) {
+    ExpectRefused(kCli + " " + command + " --tare 500:600" + params + kLog,
+                  kLog + ": --tare 500:600 names no row: its t runs from 0 to 123.12 s — name a "
+                         "time range inside it, or write --tare auto",
+                  std::string("tare_range_") + command);
+    ExpectRefused("cat " + kLog + " | " + kCli + " " + command + " --tare auto" + params + "-",
+                  "--tare: the tare reads the log before the correction does, and standard input "
+                  "can be read once only — give the log as a file, or leave out --tare",
+                  std::string("tare_stdin_") + command);
+    ExpectRefused(kCli + " " + command + " --tare 1:x" + params + kLog,
+                  "--tare: '1:x' is neither auto nor T0:T1", std::string("tare_spec_") + command);
+  }
+  ExpectRefused(kCli + " filter --tare auto --unloaded-start 0.1" + params + kLog,
+                "--unloaded-start excludes --tare", "tare_unloaded_start");
+}
+
 }  // namespace
 }  // namespace pliant::testing
