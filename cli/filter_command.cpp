@@ -114,8 +114,8 @@ void RunFilter(FilterCommandOptions o) {
   const auto log = io::CheckLogPlausibilityAndWarn(o.input_path, {o.skip_bad_rows});
   CheckUnloadedStart(o.filter.unloaded_start_s, log.DurationS());
   // The same tare as pliant correct's, written into the parameters' bias.
-  const auto tare =
-      o.tare.empty() ? estimation::LogTare{} : estimation::TareOnLog(o.input_path, o.tare, &parameters);
+  const auto tare = o.tare.empty() ? estimation::LogTare{}
+                                    : estimation::TareOnLog(o.input_path, o.tare, &parameters);
   const std::string note = tare.Note();
   std::optional<io::Progress> progress(std::in_place, "pliant filter");
   const auto summary = estimation::FilterLog(

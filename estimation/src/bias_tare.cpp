@@ -19,7 +19,9 @@ std::vector<std::pair<std::string, double>> BiasGradient(const models::JointPara
   for (std::size_t i = 0; i < f.coefficients.size(); ++i) {
     double sum = 0.0;
     const double k = double((i + 1) / 2);
-    for (double q : rows.angle_rad) sum += i == 0 ? 1.0 : i % 2 == 1 ? std::cos(k * q) : std::sin(k * q);
+    for (double q : rows.angle_rad) {
+      sum += i == 0 ? 1.0 : i % 2 == 1 ? std::cos(k * q) : std::sin(k * q);
+    }
     g.emplace_back(prefix + "coefficients[" + std::to_string(i) + "]", sum / n);
   }
   double depth = 0.0;

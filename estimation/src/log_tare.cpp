@@ -93,7 +93,8 @@ LogTare TareOnLog(const std::string& log_path, const std::string& spec,
   }
   const io::Log log = io::ReadLog(log_path);
   const Loads loads = LoadsOf(log, *parameters);
-  const UnloadedRun named = rows_wanted.automatic ? UnloadedRun{} : NamedRows(loads.t_s, rows_wanted);
+  const UnloadedRun named =
+      rows_wanted.automatic ? UnloadedRun{} : NamedRows(loads.t_s, rows_wanted);
   if (!rows_wanted.automatic && named.rows == 0) {
     const double first = loads.t_s.empty() ? 0.0 : loads.t_s.front();
     const double last = loads.t_s.empty() ? 0.0 : loads.t_s.back();
