@@ -87,8 +87,8 @@ LogTare TareOnLog(const std::string& log_path, const std::string& spec,
   const TareSpec rows_wanted = ParseSpec(spec);
   if (log_path == "-") {
     throw io::InputError("--tare", 0, 0,
-                         "the tare reads the log before the correction does, and standard input "
-                         "can be read once only",
+                         "the tare reads the log before the command does, and standard input can "
+                         "be read only once",
                          "give the log as a file, or leave out --tare");
   }
   const io::Log log = io::ReadLog(log_path);

@@ -177,8 +177,8 @@ TEST(FilterTare, RefusesARangeWithNoRowsStandardInputAndUnloadedStart) {
                          "time range inside it, or write --tare auto",
                   std::string("tare_range_") + command);
     ExpectRefused("cat " + kLog + " | " + kCli + " " + command + " --tare auto" + params + "-",
-                  "--tare: the tare reads the log before the correction does, and standard input "
-                  "can be read once only — give the log as a file, or leave out --tare",
+                  "--tare: the tare reads the log before the command does, and standard input can "
+                  "be read only once — give the log as a file, or leave out --tare",
                   std::string("tare_stdin_") + command);
     ExpectRefused(kCli + " " + command + " --tare 1:x" + params + kLog,
                   "--tare: '1:x' is neither auto nor T0:T1", std::string("tare_spec_") + command);
