@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <memory>
 #include <stdexcept>
+#include <vector>
 
 #include <ceres/ceres.h>
 #include <ceres/normal_prior.h>
@@ -52,49 +54,50 @@ class SmootherProblem {
     const std::array<models::ComplianceForm, 2> forms{options.law, options.law};
     const bool beam = options.law == models::ComplianceForm::kBeamSeries;
     const int h = options.bias_harmonics, nb = 2 * h + 2;
+    LayOut(*state, nb);
     for (int j = 0; j < 2; ++j) {
       // The law in units of its prior sd (identification_costs.h says why).
       std::array<double, 4> scaled_mean, unit{1.0, 1.0, 1.0, 1.0};
       for (int i = 0; i < 4; ++i) {
         law_scale_[j][i] = prior.law_sd[j][i];
-        scaled_law_[j][i] = state->law[j][i] / law_scale_[j][i];
+        law_[j][i] = state->law[j][i] / law_scale_[j][i];
         scaled_mean[i] = prior.law[j][i] / law_scale_[j][i];
       }
-      Global(scaled_law_[j].data(), 4, scaled_mean.data(), unit.data());
+      Global(law_[j], 4, scaled_mean.data(), unit.data());
       if (beam) {  // l_c is geometry; the three compliances are >= 0
-        problem_->SetManifold(scaled_law_[j].data(), new ceres::SubsetManifold(4, {3}));
-        for (int i = 0; i < 3; ++i) problem_->SetParameterLowerBound(scaled_law_[j].data(), i, 0.0);
+        problem_->SetManifold(law_[j], new ceres::SubsetManifold(4, {3}));
+        for (int i = 0; i < 3; ++i) problem_->SetParameterLowerBound(law_[j], i, 0.0);
       }
-      Global(&state->delta_rad[j], 1, &prior.delta_rad[j], &prior.delta_sd[j]);
-      problem_->SetParameterLowerBound(&state->delta_rad[j], 0, 0.0);
-      Global(&state->log_width[j], 1, &prior.log_width[j], &prior.log_width_sd[j]);
+      Global(delta_[j], 1, &prior.delta_rad[j], &prior.delta_sd[j]);
+      problem_->SetParameterLowerBound(delta_[j], 0, 0.0);
+      Global(width_[j], 1, &prior.log_width[j], &prior.log_width_sd[j]);
       // The take-up of the clearance cannot be resolved below the effort noise
       // of one sample; a hard contact would otherwise drive w to 0, where the
       // dead zone turns into a step no derivative can follow.
       const double floor = std::log(width_floor_nm[j]);
       if (options.estimate_deadzone_width) {
-        state->log_width[j] = std::max(state->log_width[j], floor);
-        problem_->SetParameterLowerBound(&state->log_width[j], 0, floor);
+        *width_[j] = std::max(*width_[j], floor);
+        problem_->SetParameterLowerBound(width_[j], 0, floor);
       } else {
-        state->log_width[j] = floor;
-        problem_->SetParameterBlockConstant(&state->log_width[j]);
+        *width_[j] = floor;
+        problem_->SetParameterBlockConstant(width_[j]);
       }
-      Global(state->bias[j].data(), nb, prior.bias[j].data(), prior.bias_sd[j].data());
+      Global(bias_[j], nb, prior.bias[j].data(), prior.bias_sd[j].data());
       if (!options.bias_depth_term) {
-        problem_->SetManifold(state->bias[j].data(), new ceres::SubsetManifold(nb, {nb - 1}));
+        problem_->SetManifold(bias_[j], new ceres::SubsetManifold(nb, {nb - 1}));
       }
       // What the logs cannot determine stays at its prior mean (GlobalCovariance
       // carries its prior sd into the others'): fitted, it would soak up
       // whatever the model misses and report a tiny sd.
-      if (held_.backlash[j]) problem_->SetParameterBlockConstant(&state->delta_rad[j]);
-      if (held_.bias[j]) problem_->SetParameterBlockConstant(state->bias[j].data());
+      if (held_.backlash[j]) problem_->SetParameterBlockConstant(delta_[j]);
+      if (held_.bias[j]) problem_->SetParameterBlockConstant(bias_[j]);
     }
-    for (auto& [segment, tip] : state->tip_rad) {
+    for (auto& [segment, tip] : tip_) {
       for (int j = 0; j < 2; ++j) {
         // A weak prior (0.1 rad) keeps a tip the samples barely see finite.
         const double sd = 0.1;
-        problem_->AddResidualBlock(Prior(&tip[j], &sd, 1), nullptr, &tip[j]);
-        ordering_->AddElementToGroup(&tip[j], 1);
+        problem_->AddResidualBlock(Prior(tip + j, &sd, 1), nullptr, tip + j);
+        ordering_->AddElementToGroup(tip + j, 1);
       }
     }
     for (std::size_t i = 0; i < data.samples.size(); ++i) {
@@ -105,18 +108,17 @@ class SmootherProblem {
           problem_->AddResidualBlock(
               detail::NewEffortResidual(s, j, h, options.bias_reference_depth_m,
                                         noise.effort_free_nm[j] / rows, false),
-              &huber_, state->bias[j].data());
+              &huber_, bias_[j]);
           continue;
         }
         double* tau = &state->tau_ext_nm[i][j];
         problem_->AddResidualBlock(
             detail::NewEffortResidual(s, j, h, options.bias_reference_depth_m,
                                       noise.effort_fixed_nm[j] / rows, true),
-            &huber_, state->bias[j].data(), tau);
+            &huber_, bias_[j], tau);
         problem_->AddResidualBlock(
             detail::NewAngleResidual(s, j, forms, law_scale_[j], noise.angle_fixed_rad[j] / rows),
-            &huber_, tau, &state->tip_rad[s.segment][j], scaled_law_[j].data(), &state->delta_rad[j],
-            &state->log_width[j]);
+            &huber_, tau, tip_.at(s.segment) + j, law_[j], delta_[j], width_[j]);
         ordering_->AddElementToGroup(tau, 0);  // eliminated first (Schur complement)
       }
     }
@@ -135,8 +137,7 @@ class SmootherProblem {
     solver.parameter_tolerance = 1e-10;
     ceres::Solver::Summary summary;
     ceres::Solve(solver, problem_.get(), &summary);
-    for (int j = 0; j < 2; ++j)
-      for (int i = 0; i < 4; ++i) state_->law[j][i] = scaled_law_[j][i] * law_scale_[j][i];
+    CopyBack();
     return summary;
   }
 
@@ -147,20 +148,20 @@ class SmootherProblem {
     std::vector<const double*> blocks;
     std::vector<double> scale;
     for (int j = 0; j < 2; ++j) {
-      blocks.push_back(scaled_law_[j].data());
+      blocks.push_back(law_[j]);
       scale.insert(scale.end(), law_scale_[j].begin(), law_scale_[j].end());
     }
-    for (int j = 0; j < 2; ++j) blocks.push_back(&state_->delta_rad[j]), scale.push_back(1.0);
-    for (int j = 0; j < 2; ++j) blocks.push_back(&state_->log_width[j]), scale.push_back(1.0);
+    for (int j = 0; j < 2; ++j) blocks.push_back(delta_[j]), scale.push_back(1.0);
+    for (int j = 0; j < 2; ++j) blocks.push_back(width_[j]), scale.push_back(1.0);
     for (int j = 0; j < 2; ++j) {
-      blocks.push_back(state_->bias[j].data());
+      blocks.push_back(bias_[j]);
       scale.insert(scale.end(), state_->bias[j].size(), 1.0);
     }
     // The held parameters are free here: their columns give the sensitivity of
     // the others to them (consider_covariance.h).
     for (int j = 0; j < 2; ++j) {
-      if (held_.backlash[j]) problem_->SetParameterBlockVariable(&state_->delta_rad[j]);
-      if (held_.bias[j]) problem_->SetParameterBlockVariable(state_->bias[j].data());
+      if (held_.backlash[j]) problem_->SetParameterBlockVariable(delta_[j]);
+      if (held_.bias[j]) problem_->SetParameterBlockVariable(bias_[j]);
     }
     const long n = long(scale.size());
     Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> c(n, n);
@@ -186,9 +187,46 @@ class SmootherProblem {
     ordering_->AddElementToGroup(block, 1);
   }
 
+  // Ceres orders the blocks of one elimination group by address (a
+  // ParameterBlockOrdering holds std::set<double*>), and the order changes the
+  // solution's last digits: blocks in separate heap allocations would follow
+  // the heap's layout, which differs from one process to the next (a Python
+  // process, another malloc). Every block outside the eliminated group lives
+  // in globals_, in a fixed order: the law (in prior-sd units), δ, log w and
+  // the bias of each joint, then the tips by segment.
+  void LayOut(const SmootherState& state, int bias_size) {
+    globals_.assign(2 * (4 + 1 + 1 + std::size_t(bias_size)) + 2 * state.tip_rad.size(), 0.0);
+    double* next = globals_.data();
+    auto take = [&next](std::size_t n) { double* block = next; next += n; return block; };
+    for (int j = 0; j < 2; ++j) {
+      law_[j] = take(4);
+      delta_[j] = take(1), *delta_[j] = state.delta_rad[j];
+      width_[j] = take(1), *width_[j] = state.log_width[j];
+      bias_[j] = take(std::size_t(bias_size));
+      std::copy(state.bias[j].begin(), state.bias[j].end(), bias_[j]);
+    }
+    for (const auto& [segment, tip] : state.tip_rad) {
+      tip_[segment] = take(2);
+      std::copy(tip.begin(), tip.end(), tip_[segment]);
+    }
+  }
+
+  void CopyBack() {
+    for (int j = 0; j < 2; ++j) {
+      for (int i = 0; i < 4; ++i) state_->law[j][i] = law_[j][i] * law_scale_[j][i];
+      state_->delta_rad[j] = *delta_[j];
+      state_->log_width[j] = *width_[j];
+      std::copy(bias_[j], bias_[j] + state_->bias[j].size(), state_->bias[j].begin());
+    }
+    for (auto& [segment, tip] : state_->tip_rad) std::copy(tip_[segment], tip_[segment] + 2, tip.begin());
+  }
+
   SmootherState* state_;
   detail::UndeterminedParameters held_;
-  std::array<std::array<double, 4>, 2> scaled_law_{}, law_scale_{};
+  std::vector<double> globals_;
+  double *law_[2], *delta_[2], *width_[2], *bias_[2];
+  std::map<int, double*> tip_;
+  std::array<std::array<double, 4>, 2> law_scale_{};
   ceres::HuberLoss huber_;
   std::unique_ptr<ceres::Problem> problem_;
   std::shared_ptr<ceres::ParameterBlockOrdering> ordering_;
