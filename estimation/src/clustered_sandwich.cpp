@@ -93,7 +93,15 @@ void EvaluateJacobian(ceres::Problem* problem, const std::vector<double*>& block
 }
 
 Eigen::MatrixXd NotBelow(const Eigen::MatrixXd& a, const Eigen::MatrixXd& floor) {
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> f(floor);
+  // In units of the floor's sd: the parameters' scales differ by 10¹⁵ (a law
+  // coefficient against a clearance in rad), beyond what one eigenvalue
+  // threshold can tell apart.
+  Eigen::VectorXd unit = floor.diagonal().cwiseMax(0.0).cwiseSqrt();
+  for (Eigen::Index i = 0; i < unit.size(); ++i) if (unit[i] == 0.0) unit[i] = 1.0;
+  const Eigen::VectorXd per_unit = unit.cwiseInverse();
+  const Eigen::MatrixXd scaled_floor = per_unit.asDiagonal() * floor * per_unit.asDiagonal();
+  const Eigen::MatrixXd scaled_a = per_unit.asDiagonal() * a * per_unit.asDiagonal();
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> f(scaled_floor);
   const double tiny = 1e-12 * std::max(f.eigenvalues().maxCoeff(), 0.0);
   Eigen::VectorXd root = f.eigenvalues(), inverse_root = f.eigenvalues();
   for (Eigen::Index i = 0; i < root.size(); ++i) {
@@ -104,11 +112,11 @@ Eigen::MatrixXd NotBelow(const Eigen::MatrixXd& a, const Eigen::MatrixXd& floor)
   const Eigen::MatrixXd half = f.eigenvectors() * root.asDiagonal() * f.eigenvectors().transpose();
   const Eigen::MatrixXd inverse_half =
       f.eigenvectors() * inverse_root.asDiagonal() * f.eigenvectors().transpose();
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> ratio(inverse_half * a * inverse_half);
-  // Raise each direction where A is below F to F; leave the others.
-  Eigen::VectorXd raise = (1.0 - ratio.eigenvalues().array()).max(0.0).matrix();
-  // (Directions F leaves at zero: half·v = 0, nothing is added.)
-  const Eigen::MatrixXd u = half * ratio.eigenvectors();
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> ratio(inverse_half * scaled_a * inverse_half);
+  // Raise each direction where A is below F to F; leave the others. (Directions
+  // F leaves at zero: half·v = 0, nothing is added.)
+  const Eigen::VectorXd raise = (1.0 - ratio.eigenvalues().array()).max(0.0).matrix();
+  const Eigen::MatrixXd u = unit.asDiagonal() * half * ratio.eigenvectors();
   return a + u * raise.asDiagonal() * u.transpose();
 }
 
