@@ -117,7 +117,11 @@ Eigen::MatrixXd NotBelow(const Eigen::MatrixXd& a, const Eigen::MatrixXd& floor)
   // F leaves at zero: half·v = 0, nothing is added.)
   const Eigen::VectorXd raise = (1.0 - ratio.eigenvalues().array()).max(0.0).matrix();
   const Eigen::MatrixXd u = unit.asDiagonal() * half * ratio.eigenvectors();
-  return a + u * raise.asDiagonal() * u.transpose();
+  Eigen::MatrixXd out = a + u * raise.asDiagonal() * u.transpose();
+  for (Eigen::Index i = 0; i < out.rows(); ++i) {  // held in both: exactly zero, not round-off
+    if (floor(i, i) == 0.0 && a(i, i) == 0.0) out.row(i).setZero(), out.col(i).setZero();
+  }
+  return out;
 }
 
 }  // namespace pliant::estimation::detail

@@ -69,7 +69,8 @@ TEST(ClusteredSandwich, NotBelowHoldsAcrossParametersOfVeryDifferentScales) {
   EXPECT_GE(b(0, 0), 900.0 * (1.0 - 1e-9));  // A below the floor on the law: raised
   EXPECT_GE(b(1, 1), 4e-10 * (1.0 - 1e-9));  // above it on the clearance: kept
   EXPECT_LT(b(1, 1), 8e-10);
-  EXPECT_EQ(b(2, 2), 0.0);
+  EXPECT_EQ(b(2, 2), 0.0);  // held in both: exactly zero
+  EXPECT_EQ(b(0, 2), 0.0);
 }
 
 // Each clamp of this instrument bends a few percent off the depth law (as the
