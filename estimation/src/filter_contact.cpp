@@ -16,13 +16,10 @@ namespace pliant::estimation::filter_internal {
 
 ContactPrior MixContact(const FilterOptions& o, double probability, double dt) {
   ContactPrior m;
-  if (o.quasi_static) {
-    // Each row is its own static measurement: the chain's stationary share,
-    // and any contact is a new one.
-    m.probability = o.contact_start_rate_hz / (o.contact_start_rate_hz + o.contact_end_rate_hz);
-    m.continuing = 0.0;
-    return m;
-  }
+  // A quasi-static log's t is a pose index, and no time passes in the chain
+  // between two poses but one nominal period's: a contact goes on from pose
+  // to pose unless the rows say otherwise (QuasiStaticHeldEvidence).
+  if (o.quasi_static) dt = o.sample_period_s;
   const double start = -std::expm1(-o.contact_start_rate_hz * dt);
   const double end = -std::expm1(-o.contact_end_rate_hz * dt);
   const double stays = probability * (1.0 - end);
@@ -32,7 +29,8 @@ ContactPrior MixContact(const FilterOptions& o, double probability, double dt) {
 }
 
 double ContactPosterior(double prior, double contact_innovation, double contact_variance,
-                        double free_residual, double free_variance, double free_dof) {
+                        double free_residual, double free_variance, double free_dof,
+                        double held_log_evidence) {
   // Full log densities: the no-contact residual is Student-t when free_dof
   // is finite, and its normalisation differs from the Gaussian's.
   constexpr double kLogTwoPi = 1.8378770664093453;
@@ -49,7 +47,7 @@ double ContactPosterior(double prior, double contact_innovation, double contact_
   }
   if (!(std::isfinite(l1) && std::isfinite(l0))) return prior;
   const double prior_odds = std::log(prior) - std::log1p(-prior);
-  const double log_odds = std::clamp(prior_odds + l1 - l0, -700.0, 700.0);
+  const double log_odds = std::clamp(prior_odds + l1 - l0 + held_log_evidence, -700.0, 700.0);
   return 1.0 / (1.0 + std::exp(-log_odds));
 }
 
@@ -66,6 +64,36 @@ void CollapseContact(FilterJointState* state, double probability) {
   const Vector g = P.col(kTorque) / p_tau;
   state->mean -= (1.0 - probability) * m * g;
   P.noalias() -= ((1.0 - probability) * (p_tau - probability * m * m)) * (g * g.transpose());
+}
+
+// Two consecutive poses of one depth in a quasi-static log: a held shaft's
+// load follows the motor, r − r_prev = Δq/(s·K(L)) (the encoder's travel
+// bends the shaft against the wall that holds the tip), while a free arm's
+// effort residual stays where it was, r − r_prev = 0 (the bias table's error
+// changes little between two nearby poses; what changes, the held friction,
+// the model takes out under both). The log-likelihood ratio of the two:
+// what makes a small load in the middle of a push (a clamp's load passing
+// through zero) contact, and a free sweep's steps free. Both see two rows'
+// effort noise; the held one also the doubt of s and the clearance (which
+// the travel may cross instead of bending the shaft).
+double QuasiStaticHeldEvidence(const FilterOptions& o, double residual_change,
+                               double encoder_change, double scale_compliance,
+                               double scale_sd, double clearance_rad,
+                               double internal_torque_change) {
+  if (!(scale_compliance > 0.0) || !std::isfinite(residual_change) ||
+      !std::isfinite(encoder_change)) {
+    return 0.0;
+  }
+  const double held_change = encoder_change / scale_compliance;
+  const double noise = 2.0 * o.effort_noise_nm * o.effort_noise_nm +
+                       internal_torque_change * internal_torque_change;
+  const double model = scale_sd * scale_sd + o.deflection_model_error * o.deflection_model_error;
+  const double crossing = clearance_rad / scale_compliance;
+  const double held_variance = noise + model * held_change * held_change + crossing * crossing;
+  const double miss = residual_change - held_change;
+  const double l_held = -0.5 * (miss * miss / held_variance + std::log(held_variance));
+  const double l_free = -0.5 * (residual_change * residual_change / noise + std::log(noise));
+  return l_held - l_free;
 }
 
 void UnmodelledEffort::Learn(double weight, double residual, double rest_variance) {

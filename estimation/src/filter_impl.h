@@ -65,8 +65,25 @@ ContactPrior MixContact(const FilterOptions& o, double probability, double dt);
 // The posterior probability of contact from the slab's innovation (and its
 // variance) and the no-contact residual (its scale², Student-t with free_dof
 // degrees of freedom, Gaussian when free_dof is infinite).
+// held_log_evidence: a further log-likelihood ratio for contact (QuasiStaticHeldEvidence).
 double ContactPosterior(double prior, double contact_innovation, double contact_variance,
-                        double free_residual, double free_variance, double free_dof);
+                        double free_residual, double free_variance, double free_dof,
+                        double held_log_evidence = 0.0);
+// The log-likelihood ratio, held against free, of a quasi-static log's two
+// consecutive poses at one depth: the change of the effort residual against
+// the encoder's change through s·K(L) (filter_contact.cpp).
+double QuasiStaticHeldEvidence(const FilterOptions& o, double residual_change,
+                               double encoder_change, double scale_compliance,
+                               double scale_sd, double clearance_rad,
+                               double internal_torque_change);
+// A quasi-static log's last pose, per joint, for QuasiStaticHeldEvidence.
+struct LastPose {
+  bool valid = false;
+  double encoder_rad = 0.0;
+  double residual_nm = 0.0;
+  double depth_m = 0.0;
+  double internal_torque_nm = 0.0;  // the parameters' further effects' (held friction)
+};
 // The Gaussian-sum collapse of the slab posterior and its tau = 0 conditional.
 void CollapseContact(FilterJointState* state, double probability);
 // The arm's own torque in the effort while it moves, learned online from
@@ -149,6 +166,7 @@ struct ComplianceFilter::Impl {
   double ContactOnsetVariance(const FilterSample& sample, int j, double dt);
   void UpdateMeasurements(const FilterSample& sample, StepTally* tally);
   void UpdateEffort(const FilterSample& sample, int j, bool unloaded, StepTally* tally);
+  double PoseChangeEvidence(const FilterSample& sample, int j, double residual);
   void Reinitialise(int j, const FilterSample& sample);
   FilterEstimate Output(const FilterSample& newest);
 
@@ -224,6 +242,7 @@ struct ComplianceFilter::Impl {
   double contact_probability[2] = {1.0, 1.0};
   double contact_prior[2] = {1.0, 1.0};
   double contact_onset[2] = {0.0, 0.0};
+  filter_internal::LastPose last_pose[2];  // quasi-static logs only
   filter_internal::UnmodelledEffort unmodelled[2];
   filter_internal::InternalTorque internal_torque[2];
   MotorMotion motion[2];  // for the inertial torque in the effort, from the newest sample

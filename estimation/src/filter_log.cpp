@@ -53,8 +53,8 @@ FilterOptions OptionsForLog(FilterOptions options, const io::LogHeader& header,
                             LogFilterSummary* summary) {
   options.quasi_static = options.quasi_static || header.QuasiStatic();
   if (options.quasi_static) {
-    summary->notes.push_back("quasi-static log: each row filtered as an independent static "
-                             "measurement (t read as a pose index only)");
+    summary->notes.push_back("quasi-static log: each row filtered as a static measurement (t read "
+                             "as a pose index only; a contact may go on from pose to pose)");
   }
   for (int j = 0; j < 2; ++j) {
     options.joint_recorded[j] = header.JointRecorded(j + 1);

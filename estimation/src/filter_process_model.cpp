@@ -64,10 +64,14 @@ double HeldEffortVariance(const FilterOptions& o, double inertial_torque_nm) {
 
 // The fraction of its wall an unloaded shaft forgets in one step: with time
 // constant T while the joint moves (an encoder increment of 3 counts or more
-// per step counts fully, less in proportion), nothing while it rests.
+// per step counts fully, less in proportion), nothing while it rests. A
+// quasi-static log's rows are poses the arm settled at: a shaft that moved
+// between two of them has had all the time it needs (its dt, one nominal
+// period, is no time at all).
 double BacklashRelax(const FilterOptions& o, double dt, double encoder_increment) {
   const double count = 3.4641016151377544 * o.encoder_noise_rad;  // σ_enc = count/√12
   const double moving = std::min(1.0, std::abs(encoder_increment) / (3.0 * count));
+  if (o.quasi_static) return moving;
   return -std::expm1(-dt / o.backlash_relax_time_s) * moving;
 }
 

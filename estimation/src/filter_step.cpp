@@ -171,6 +171,7 @@ void ComplianceFilter::Impl::UpdateEffort(const FilterSample& sample, int j, boo
   if (!std::isfinite(effort)) tally->flags |= kFlagMissing;
   if (std::isfinite(effort) && !usable) tally->flags |= kFlagEffortSaturated;
   if (!usable) {
+    last_pose[j].valid = false;
     if (mixture) {  // the chain's prediction alone
       contact_probability[j] = contact_prior[j];
       CollapseContact(&joint[j], contact_probability[j]);
@@ -233,7 +234,8 @@ void ComplianceFilter::Impl::UpdateEffort(const FilterSample& sample, int j, boo
                                     : std::numeric_limits<double>::infinity();
     contact_probability[j] = ContactPosterior(contact_prior[j], residual,
                                               sd_c * sd_c + free_variance, residual,
-                                              free_variance, dof);
+                                              free_variance, dof,
+                                              PoseChangeEvidence(sample, j, residual));
     unmodelled[j].Learn((1.0 - contact_probability[j]) * moving *
                             -std::expm1(-step_dt / options.unmodelled_effort_memory),
                         residual, rest);
@@ -247,6 +249,27 @@ void ComplianceFilter::Impl::UpdateEffort(const FilterSample& sample, int j, boo
                residual - s.mean[kTorque], variance, tally, false,
                ConsiderFor(sample, j, unloaded));
   if (mixture) CollapseContact(&joint[j], contact_probability[j]);
+}
+
+// A quasi-static log's evidence for contact from the pose change
+// (QuasiStaticHeldEvidence): the last pose must be at the same depth (a clamp
+// re-made elsewhere starts anew) with both encoders read. Remembers this pose.
+double ComplianceFilter::Impl::PoseChangeEvidence(const FilterSample& sample, int j,
+                                                  double residual) {
+  if (!options.quasi_static) return 0.0;
+  LastPose& last = last_pose[j];
+  const double encoder = sample.encoder_rad[j];
+  double evidence = 0.0;
+  if (last.valid && std::isfinite(encoder) &&
+      std::abs(depth - last.depth_m) <= kMaxHeldDepthChange) {
+    const FilterJointState& s = joint[j];
+    evidence = QuasiStaticHeldEvidence(
+        options, residual - last.residual_nm, encoder - last.encoder_rad,
+        s.mean[kScale] * ComplianceAtDepth(j), std::sqrt(s.covariance(kScale, kScale)),
+        delta[j], extra_internal_torque_nm[j] - last.internal_torque_nm);
+  }
+  last = LastPose{std::isfinite(encoder), encoder, residual, depth, extra_internal_torque_nm[j]};
+  return evidence;
 }
 
 }  // namespace pliant::estimation

@@ -277,9 +277,11 @@ struct FilterOptions {
   /// load are re-initialised (kFlagReinitialised), s.
   double time_gap_s = 0.1;
   /// One row per pose (a log with "# timing: quasi-static"): t is a pose index,
-  /// read for nothing; each row is an independent static measurement of the
-  /// same instrument (the tip of a free row and every row's load start again
-  /// from their priors; s, e, β and the shaft's offset carry over).
+  /// read for nothing; each row is a static measurement of the same
+  /// instrument (the tip of a free row and every row's load start again from
+  /// their priors; s, e, β and the shaft's offset carry over; without the
+  /// tip_fixed hint a contact goes on from pose to pose, judged by whether the
+  /// load follows the encoder: docs/decisions/contact-prior.md).
   bool quasi_static = false;
   /// Joints the log records (LogHeader::JointRecorded): an unrecorded joint
   /// keeps its prior, flags nothing missing, and its output is NaN.
