@@ -5,8 +5,8 @@
 #include <string>
 
 #include "commands.h"
-#include "correct_tare.h"
 #include "pliant/estimation/log_correction.h"
+#include "pliant/estimation/log_tare.h"
 #include "pliant/io/log_plausibility.h"
 #include "pliant/io/output_path.h"
 #include "pliant/io/parameters_json.h"
@@ -48,17 +48,21 @@ void PrintSummary(const CorrectOptions& options, const estimation::LogCorrection
 
 void RunCorrect(const CorrectOptions& options) {
   io::CheckOutputFile(options.output_path, "-o");
-  const auto parameters = io::ReadParameters(options.params_path);
+  auto parameters = io::ReadParameters(options.params_path);
   io::CheckLogPlausibilityAndWarn(options.input_path, {options.skip_bad_rows});
-  estimation::ComplianceCorrector corrector(
+  const auto tare = options.tare.empty()
+                        ? estimation::LogTare{}
+                        : estimation::TareOnLog(options.input_path, options.tare, &parameters);
+  const estimation::ComplianceCorrector corrector(
       parameters, *estimation::ParseCorrectionModel(options.model_name));
-  const std::string tare =
-      options.tare.empty() ? "" : TareFromLog(options.input_path, options.tare, &corrector);
+  const std::string note = tare.Note();
   const auto summary = estimation::CorrectLog(
       options.input_path, options.output_path, corrector,
-      options.model_name + " model, parameters " + options.params_path, {options.skip_bad_rows});
+      options.model_name + " model, parameters " + options.params_path +
+          (note.empty() ? "" : ", " + note),
+      {options.skip_bad_rows});
   PrintSummary(options, summary);
-  std::printf("%s", tare.c_str());
+  std::printf("%s", tare.Words().c_str());
   if (!corrector.extra_effects().empty()) {
     std::string names;
     for (const auto& n : corrector.extra_effects().Names()) names += (names.empty() ? "" : ", ") + n;
@@ -83,8 +87,9 @@ Command AddCorrectCommand(CLI::App& app) {
   sub->add_option("-o,--output", options->output_path, "Output log, written atomically")
       ->required();
   sub->add_option("--tare", options->tare,
-                  "Tare the bias on the log's unloaded rows: auto (the longest run with a steady "
-                  "load) or T0:T1 (rows with t in that range, s)");
+                  "Tare the parameters' bias torque on the log's unloaded rows: auto (the longest "
+                  "run with a steady load) or T0:T1 (rows with t in that range, s; "
+                  "docs/real-data.md)");
   sub->add_flag("--skip-bad-rows", options->skip_bad_rows,
                 "Drop and count rows with NaN/Inf/empty required values instead of stopping");
   return [options] { RunCorrect(*options); };

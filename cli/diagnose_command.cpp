@@ -28,6 +28,7 @@ struct DiagnoseCommandOptions {
   std::string params_path;
   std::string log_path;
   std::string report_dir;
+  std::string write_params_path;  ///< --write-params: the parameters with the --add effects
   bool json = false;
   estimation::DiagnoseOptions diagnose;
 };
@@ -106,6 +107,7 @@ void RunDiagnose(DiagnoseCommandOptions o) {
                          "give -o a directory name (it is created if missing)");
   }
   io::CheckOutputDirectory(o.report_dir, "-o");
+  if (!o.write_params_path.empty()) io::CheckOutputFile(o.write_params_path, "--write-params");
   const auto parameters = io::ReadParameters(o.params_path);
   io::CheckLogPlausibilityAndWarn(o.log_path);
   std::optional<io::Progress> progress(std::in_place, "pliant diagnose");
@@ -113,12 +115,21 @@ void RunDiagnose(DiagnoseCommandOptions o) {
   const auto diagnosis = estimation::Diagnose(log, o.log_path, parameters, o.diagnose);
   const auto files =
       experiments::WriteDiagnosisReport(o.report_dir, log, diagnosis, {o.log_path, o.params_path});
+  if (!o.write_params_path.empty()) {
+    io::WriteParameters(o.write_params_path,
+                        estimation::WithDiagnosedEffects(parameters, diagnosis, o.log_path));
+  }
   progress.reset();  // the line is erased before the summary
   if (!o.json) {
     PrintHuman(diagnosis, files.html);
+    if (!o.write_params_path.empty())
+      std::printf("  wrote %s: the parameters with the added effects and the refitted compliance "
+                  "scale and clearance (pliant correct and filter apply them)\n",
+                  o.write_params_path.c_str());
   } else {
     auto summary = experiments::DiagnosisSummaryJson(diagnosis);
     summary["report"] = files.html;
+    if (!o.write_params_path.empty()) summary["parameters_written"] = o.write_params_path;
     std::cout << summary.dump(2) << std::endl;
   }
   // A picture that could not be drawn is a warning: the diagnosis stands.
@@ -140,8 +151,13 @@ Command AddDiagnoseCommand(CLI::App& app) {
       ->required();
   sub->add_option("log", o->log_path, "Log with tip_fixed segments or q1_ref/q2_ref (CSV)")
       ->required();
-  sub->add_option("--add", o->diagnose.added_effects,
-                  "Catalogue effect to add to the model and refit with (repeatable)");
+  CLI::Option* add = sub->add_option("--add", o->diagnose.added_effects,
+                                     "Catalogue effect to add to the model and refit with (repeatable)");
+  sub->add_option("--write-params", o->write_params_path,
+                  "With --add: write the parameters file with the added effects as fitted (values "
+                  "± sd) and the refitted compliance scale and clearance, for pliant correct and "
+                  "filter (atomically)")
+      ->needs(add);
   sub->add_option("-o,--output", o->report_dir,
                   "Report directory (index.html, summary.json, figures/); default "
                   "LOGNAME_diagnosis in the current directory");

@@ -9,6 +9,7 @@
 
 #include "commands.h"
 #include "pliant/estimation/filter_log.h"
+#include "pliant/estimation/log_tare.h"
 #include "pliant/io/input_error.h"
 #include "pliant/io/log_plausibility.h"
 #include "pliant/io/output_path.h"
@@ -25,6 +26,7 @@ struct FilterCommandOptions {
   std::string output_path;
   bool smooth = false;
   bool skip_bad_rows = false;
+  std::string tare;  // "" (none), "auto" or "T0:T1"
   estimation::FilterOptions filter;
   bool effort_offset_given = false;
 };
@@ -106,17 +108,23 @@ void RunFilter(FilterCommandOptions o) {
     o.filter.effort_offset_sd_nm.setConstant(estimation::FilterOptions::kFromParameters);
   }
   io::CheckOutputFile(o.output_path, "-o");
-  const auto parameters = io::ReadParameters(o.params_path);
+  auto parameters = io::ReadParameters(o.params_path);
   std::string error;
   if (!o.filter.IsValid(&error)) throw OptionError(error);
   const auto log = io::CheckLogPlausibilityAndWarn(o.input_path, {o.skip_bad_rows});
   CheckUnloadedStart(o.filter.unloaded_start_s, log.DurationS());
+  // The same tare as pliant correct's, written into the parameters' bias.
+  const auto tare = o.tare.empty() ? estimation::LogTare{}
+                                    : estimation::TareOnLog(o.input_path, o.tare, &parameters);
+  const std::string note = tare.Note();
   std::optional<io::Progress> progress(std::in_place, "pliant filter");
-  const auto summary =
-      estimation::FilterLog(o.input_path, o.output_path, parameters, o.filter, o.smooth,
-                            "pliant filter, parameters " + o.params_path, {o.skip_bad_rows});
+  const auto summary = estimation::FilterLog(
+      o.input_path, o.output_path, parameters, o.filter, o.smooth,
+      "pliant filter, parameters " + o.params_path + (note.empty() ? "" : ", " + note),
+      {o.skip_bad_rows});
   progress.reset();  // the line is erased before the summary
   PrintSummary(o, summary);
+  std::printf("%s", tare.Words().c_str());
 }
 
 }  // namespace
@@ -199,12 +207,20 @@ Command AddFilterCommand(CLI::App& app) {
          },
          "σ of a constant effort offset the bias torque misses, N·m (default 0: off, "
          "better on held-tip logs, docs/filter.md; nan: the parameters' covariance, else 0.02)");
-  sub->add_option("--unloaded-start", f.unloaded_start_s,
+  CLI::Option* unloaded_start = sub->add_option("--unloaded-start", f.unloaded_start_s,
                   "Seconds at the log's start with the instrument untouched and the arm still "
                   "(e.g. before it approaches the tissue): the efforts there tare the effort "
                   "offset β, which is then on (σ from --effort-offset-sd, else the parameters' "
                   "covariance, else 0.02 N·m; 0: no such span; docs/filter.md)")
       ->capture_default_str();
+  // The whole log is known offline: --tare finds (or is told) its unloaded
+  // rows anywhere and tares the parameters' bias once; --unloaded-start is
+  // for a stream, whose future is unknown (docs/filter.md).
+  sub->add_option("--tare", o->tare,
+                  "Tare the parameters' bias torque on the log's unloaded rows before filtering, "
+                  "as pliant correct --tare: auto (the longest run with a steady load) or T0:T1 "
+                  "(rows with t in that range, s); not with --unloaded-start or standard input")
+      ->excludes(unloaded_start);
   sub->add_option("--output-step-limit", f.output_step_limit_counts,
                   "Encoder counts the corrected angle may move per step beyond the encoder's own "
                   "change (no jumps for a control loop; q_sd includes the gap; inf: off)")

@@ -67,7 +67,7 @@ done
 section "2. Identification on the simulated calibration logs, against the truth (data/paper.json)"
 say "$pliant" identify data/bias_sweep.csv data/clamped_beam.csv -o "$work/identified.json"
 "$pliant" identify data/bias_sweep.csv data/clamped_beam.csv -o "$work/identified.json" \
-  | sed -n -e '1p' -e '/backlash_rad/p' -e '/variance factor/p'
+  | sed -n -e '1p' -e '/backlash_rad/p' -e '/variance factor/p' -e '/covariance:/p'
 for depth in 0.09 0.22; do
   say "$pliant" params "$work/identified.json" --depth $depth --compare data/paper.json
   "$pliant" params "$work/identified.json" --depth $depth --compare data/paper.json \

@@ -105,7 +105,7 @@ JointCorrection ComplianceCorrector::Correct(const Eigen::Vector3d& q,
   for (int j = 0; j < 2; ++j) {
     const bool smooth = parameters_.joints[j].bias_form == models::BiasForm::kFourier;
     state.external_torque_nm[j] =
-        measured_torque_nm[j] - (smooth ? fourier[j] : table[j]) - internal[j] - bias_offset_nm_[j];
+        measured_torque_nm[j] - (smooth ? fourier[j] : table[j]) - internal[j];
   }
 
   JointCorrection out;

@@ -179,29 +179,36 @@ std::vector<std::string> ChannelsOf(const EffectModel& effect) {
   return channels;
 }
 
+// A fitted term as a finding: its values, sd and names.
+EffectFinding FindingOf(const Term& term, const std::vector<double>& values,
+                        const std::vector<std::vector<double>>& sd, std::size_t index) {
+  EffectFinding f;
+  f.name = term.name;
+  f.description = std::string(term.effect->Info().explanation);
+  f.channels = ChannelsOf(*term.effect);
+  f.parameters = values;
+  f.parameter_sd = sd.size() > index ? sd[index] : std::vector<double>(values.size(), 0.0);
+  for (const auto& spec : term.effect->Parameters()) f.parameter_names.push_back(spec.name);
+  f.size_unit = "mm";
+  return f;
+}
+
 // The --add effects fitted jointly on every compared row, with their sd;
-// `fixed` receives them at the fitted values.
+// `fixed` receives them at the fitted values, `recalibration` the base's
+// compliance scale and clearance refitted with them (when the problem refits).
 std::vector<EffectFinding> FitAdded(const Problem& problem, const diagnosis::BaseModel& model,
-                                    const std::vector<Term>& added, std::vector<Term>& fixed) {
+                                    const std::vector<Term>& added, std::vector<Term>& fixed,
+                                    std::optional<EffectFinding>* recalibration) {
   const std::vector<bool> all(problem.groups, true);
   const auto fit = diagnosis::FitTerms(problem, model, {}, diagnosis::WithRefit(problem, added),
                                        all, true, 1.0);
   const std::size_t first = problem.refit.size();
+  if (first == 1) *recalibration = FindingOf(problem.refit[0], fit.parameters[0], fit.parameter_sd, 0);
   fixed = added;
   std::vector<EffectFinding> out;
   for (std::size_t t = 0; t < added.size(); ++t) {
     fixed[t].parameters = fit.parameters[first + t];
-    EffectFinding f;
-    f.name = added[t].name;
-    f.description = std::string(added[t].effect->Info().explanation);
-    f.channels = ChannelsOf(*added[t].effect);
-    f.parameters = fixed[t].parameters;
-    f.parameter_sd = fit.parameter_sd.size() > first + t
-                         ? fit.parameter_sd[first + t]
-                         : std::vector<double>(f.parameters.size(), 0.0);
-    for (const auto& spec : added[t].effect->Parameters()) f.parameter_names.push_back(spec.name);
-    f.size_unit = "mm";
-    out.push_back(std::move(f));
+    out.push_back(FindingOf(added[t], fixed[t].parameters, fit.parameter_sd, first + t));
   }
   return out;
 }
@@ -293,7 +300,7 @@ Diagnosis Diagnose(const io::Log& log, const std::string& log_path,
   Residual after = before;
   Residual heldout_baseline;
   if (!added.empty()) {
-    d.added = FitAdded(problem, model, added, fixed);
+    d.added = FitAdded(problem, model, added, fixed, &d.recalibration);
     d.rms_after_mm = diagnosis::TipRmsMm(
         problem, diagnosis::CrossValidated(problem, model, {}, diagnosis::WithRefit(problem, added)));
     after = diagnosis::Residuals(problem, model, fixed);

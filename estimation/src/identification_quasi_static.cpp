@@ -9,6 +9,7 @@
 #include <Eigen/Dense>
 #include <ceres/ceres.h>
 
+#include "clustered_sandwich.h"
 #include "identification_common.h"
 #include "identification_costs.h"
 #include "quasi_static_report.h"
@@ -51,36 +52,24 @@ struct JointFit {
   std::string summary;
 };
 
-// Clustered sandwich: the rows of one clamp share their errors (unknown start,
-// model error), so the score of each clamp is one draw, not each row's.
+// Clustered sandwich (clustered_sandwich.h): the rows of one clamp share
+// their errors (unknown start, model error), so the score of each clamp is one
+// draw, not each row's.
 void Covariance(ceres::Problem* problem, const std::vector<double*>& blocks,
-                const std::vector<int>& cluster_of_row, int clusters, JointFit* fit) {
-  ceres::Problem::EvaluateOptions evaluate;
-  evaluate.parameter_blocks = blocks;
-  std::vector<double> residuals;
-  ceres::CRSMatrix crs;
-  problem->Evaluate(evaluate, nullptr, &residuals, nullptr, &crs);
-  Eigen::MatrixXd jacobian = Eigen::MatrixXd::Zero(crs.num_rows, crs.num_cols);
-  for (int r = 0; r < crs.num_rows; ++r) {
-    for (int k = crs.rows[r]; k < crs.rows[r + 1]; ++k) jacobian(r, crs.cols[k]) = crs.values[k];
-  }
-  const Eigen::Map<const Eigen::VectorXd> r(residuals.data(), Eigen::Index(residuals.size()));
-  const Eigen::MatrixXd bread =
-      (jacobian.transpose() * jacobian).completeOrthogonalDecomposition().pseudoInverse();
-  Eigen::MatrixXd scores = Eigen::MatrixXd::Zero(clusters, jacobian.cols());
-  for (Eigen::Index row = 0; row < r.size(); ++row)
-    scores.row(cluster_of_row[row]) += r[row] * jacobian.row(row);
-  const double small_sample = clusters > 1 ? double(clusters) / (clusters - 1) : 1.0;
-  const Eigen::MatrixXd meat = scores.transpose() * scores;
-  const Eigen::MatrixXd full = small_sample * bread * meat * bread;
-  const double dof = std::max(1.0, double(r.size() - jacobian.cols()));
-  const Eigen::MatrixXd white = r.squaredNorm() / dof * bread;
+                const std::vector<int>& cluster_of_row, JointFit* fit) {
+  Eigen::SparseMatrix<double> jacobian;
+  Eigen::VectorXd r;
+  detail::EvaluateJacobian(problem, blocks, {}, &jacobian, &r);
   // The global numbers are the last six columns: law (scaled) ×4, F, δ.
-  const Eigen::Index g = jacobian.cols() - 6;
+  std::vector<Eigen::Index> globals;
+  for (Eigen::Index c = jacobian.cols() - 6; c < jacobian.cols(); ++c) globals.push_back(c);
+  const detail::SandwichCovariance s =
+      detail::ClusteredSandwich(jacobian, r, cluster_of_row, globals);
+  const double dof = std::max(1.0, double(r.size() - jacobian.cols()));
   Eigen::VectorXd unscale(6);
   unscale << fit->law_scale[0], fit->law_scale[1], fit->law_scale[2], fit->law_scale[3], 1.0, 1.0;
-  fit->sandwich = unscale.asDiagonal() * full.block(g, g, 6, 6) * unscale.asDiagonal();
-  fit->white = unscale.asDiagonal() * white.block(g, g, 6, 6) * unscale.asDiagonal();
+  fit->sandwich = unscale.asDiagonal() * s.clustered * unscale.asDiagonal();
+  fit->white = unscale.asDiagonal() * (s.residual_square_sum / dof * s.model) * unscale.asDiagonal();
   // Residuals were scaled by 1/kAngleSdRad: back to radians.
   fit->rms_rad = std::sqrt(r.squaredNorm() / double(r.size())) * kAngleSdRad;
 }
@@ -136,7 +125,7 @@ JointFit FitJoint(const std::vector<const IdentificationSample*>& samples, int j
   blocks.push_back(fit.scaled_law.data());
   blocks.push_back(&fit.held_friction_nm);
   blocks.push_back(&fit.backlash_rad);
-  Covariance(&problem, blocks, cluster_of_row, fit.clusters, &fit);
+  Covariance(&problem, blocks, cluster_of_row, &fit);
   if (!options.held_friction) {  // held at 0: no uncertainty, no correlation
     fit.sandwich.row(4).setZero(), fit.sandwich.col(4).setZero();
     fit.white.row(4).setZero(), fit.white.col(4).setZero();

@@ -10,10 +10,12 @@
 #include <ceres/ceres.h>
 #include <ceres/normal_prior.h>
 
+#include "clustered_sandwich.h"
 #include "consider_covariance.h"
 #include "identification_common.h"
 #include "identification_consider.h"
 #include "identification_costs.h"
+#include "joint_smoother_sandwich.h"
 #include "joint_smoother_setup.h"
 
 namespace pliant::estimation {
@@ -46,7 +48,10 @@ class SmootherProblem {
                   const JointSmootherOptions& options, const Noise& noise,
                   const std::array<double, 2>& width_floor_nm,
                   const detail::UndeterminedParameters& held, SmootherState* state)
-      : state_(state), held_(held), huber_(options.robust_loss_sd) {
+      : state_(state), held_(held), huber_(options.robust_loss_sd),
+        beam_(options.law == models::ComplianceForm::kBeamSeries),
+        bias_depth_term_(options.bias_depth_term),
+        estimate_width_(options.estimate_deadzone_width) {
     ceres::Problem::Options problem_options;
     problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
     problem_ = std::make_unique<ceres::Problem>(problem_options);
@@ -96,7 +101,7 @@ class SmootherProblem {
       for (int j = 0; j < 2; ++j) {
         // A weak prior (0.1 rad) keeps a tip the samples barely see finite.
         const double sd = 0.1;
-        problem_->AddResidualBlock(Prior(tip + j, &sd, 1), nullptr, tip + j);
+        Add(-1, Prior(tip + j, &sd, 1), nullptr, tip + j);
         ordering_->AddElementToGroup(tip + j, 1);
       }
     }
@@ -105,18 +110,18 @@ class SmootherProblem {
       const double rows = std::sqrt(double(s.rows));
       for (int j = 0; j < 2; ++j) {
         if (!s.tip_fixed) {
-          problem_->AddResidualBlock(
+          Add(int(i),
               detail::NewEffortResidual(s, j, h, options.bias_reference_depth_m,
                                         noise.effort_free_nm[j] / rows, false),
               &huber_, bias_[j]);
           continue;
         }
         double* tau = &state->tau_ext_nm[i][j];
-        problem_->AddResidualBlock(
+        Add(int(i),
             detail::NewEffortResidual(s, j, h, options.bias_reference_depth_m,
                                       noise.effort_fixed_nm[j] / rows, true),
             &huber_, bias_[j], tau);
-        problem_->AddResidualBlock(
+        Add(int(i),
             detail::NewAngleResidual(s, j, forms, law_scale_[j], noise.angle_fixed_rad[j] / rows),
             &huber_, tau, tip_.at(s.segment) + j, law_[j], delta_[j], width_[j]);
         ordering_->AddElementToGroup(tau, 0);  // eliminated first (Schur complement)
@@ -141,21 +146,53 @@ class SmootherProblem {
     return summary;
   }
 
-  // Covariance of law1, law2, delta1, delta2, log w1, log w2, bias1, bias2 in
-  // physical units; false when Ceres finds the problem singular.
+  // The global blocks as the covariance lays them out: law1, law2, delta1,
+  // delta2, log w1, log w2, bias1, bias2, in physical units.
+  std::vector<detail::GlobalBlock> Layout() {
+    std::vector<detail::GlobalBlock> out;
+    Eigen::Index at = 0;
+    auto add = [&](double* values, std::vector<double> scale, bool constant, int fixed_coordinate) {
+      detail::GlobalBlock b{values, at, std::move(scale), {}};
+      for (int i = 0; i < int(b.scale.size()) && !constant; ++i)
+        if (i != fixed_coordinate) b.free.push_back(i);
+      at += Eigen::Index(b.scale.size());
+      out.push_back(std::move(b));
+    };
+    for (int j = 0; j < 2; ++j)
+      add(law_[j], {law_scale_[j].begin(), law_scale_[j].end()}, false, beam_ ? 3 : -1);
+    for (int j = 0; j < 2; ++j) add(delta_[j], {1.0}, held_.backlash[j], -1);
+    for (int j = 0; j < 2; ++j) add(width_[j], {1.0}, !estimate_width_, -1);
+    for (int j = 0; j < 2; ++j) {
+      const int nb = int(state_->bias[j].size());
+      add(bias_[j], std::vector<double>(std::size_t(nb), 1.0), held_.bias[j],
+          bias_depth_term_ ? -1 : nb - 1);
+    }
+    return out;
+  }
+
+  // The clustered sandwich of the globals (joint_smoother_sandwich.h), the
+  // tips and external torques profiled; held blocks get zero rows.
+  Eigen::MatrixXd Sandwich(const std::vector<int>& cluster_of_sample) {
+    std::vector<double*> nuisance;
+    for (auto& [segment, tip] : tip_) nuisance.push_back(tip), nuisance.push_back(tip + 1);
+    for (auto& tau : state_->tau_ext_nm)
+      for (double& t : tau)
+        if (problem_->HasParameterBlock(&t)) nuisance.push_back(&t);
+    const auto layout = Layout();
+    const Eigen::Index size = layout.back().offset + Eigen::Index(layout.back().scale.size());
+    return detail::SmootherSandwich(problem_.get(), layout, nuisance, residuals_, sample_of_residual_,
+                                    cluster_of_sample, size);
+  }
+
+  // Covariance of the Layout() blocks in physical units (white row noise);
+  // false when Ceres finds the problem singular.
   bool GlobalCovariance(const JointSmootherOptions& options, double variance_factor,
                         Eigen::MatrixXd* out) {
     std::vector<const double*> blocks;
     std::vector<double> scale;
-    for (int j = 0; j < 2; ++j) {
-      blocks.push_back(law_[j]);
-      scale.insert(scale.end(), law_scale_[j].begin(), law_scale_[j].end());
-    }
-    for (int j = 0; j < 2; ++j) blocks.push_back(delta_[j]), scale.push_back(1.0);
-    for (int j = 0; j < 2; ++j) blocks.push_back(width_[j]), scale.push_back(1.0);
-    for (int j = 0; j < 2; ++j) {
-      blocks.push_back(bias_[j]);
-      scale.insert(scale.end(), state_->bias[j].size(), 1.0);
+    for (const auto& b : Layout()) {
+      blocks.push_back(b.values);
+      scale.insert(scale.end(), b.scale.begin(), b.scale.end());
     }
     // The held parameters are free here: their columns give the sensitivity of
     // the others to them (consider_covariance.h).
@@ -181,9 +218,15 @@ class SmootherProblem {
   }
 
  private:
+  template <typename... Blocks>
+  void Add(int sample, ceres::CostFunction* cost, ceres::LossFunction* loss, Blocks... blocks) {
+    residuals_.push_back(problem_->AddResidualBlock(cost, loss, blocks...));
+    sample_of_residual_.push_back(sample);
+  }
+
   void Global(double* block, int n, const double* mean, const double* sd) {
     problem_->AddParameterBlock(block, n);
-    problem_->AddResidualBlock(Prior(mean, sd, n), nullptr, block);
+    Add(-1, Prior(mean, sd, n), nullptr, block);
     ordering_->AddElementToGroup(block, 1);
   }
 
@@ -228,32 +271,14 @@ class SmootherProblem {
   std::map<int, double*> tip_;
   std::array<std::array<double, 4>, 2> law_scale_{};
   ceres::HuberLoss huber_;
+  bool beam_, bias_depth_term_, estimate_width_;
+  std::vector<ceres::ResidualBlockId> residuals_;
+  std::vector<int> sample_of_residual_;  // −1: a prior
   std::unique_ptr<ceres::Problem> problem_;
   std::shared_ptr<ceres::ParameterBlockOrdering> ordering_;
 };
 
 }  // namespace
-
-bool JointSmootherOptions::IsValid(std::string* error) const {
-  if (bias_harmonics < 0 || bias_harmonics > detail::kMaxBiasHarmonics) {
-    *error = "bias_harmonics must be in [0, " + std::to_string(detail::kMaxBiasHarmonics) + "]";
-    return false;
-  }
-  if (!(effort_noise_nm > 0.0) || !(encoder_noise_rad > 0.0) || !(robust_loss_sd > 0.0) ||
-      !(prior_scale > 0.0)) {
-    *error = "effort_noise_nm, encoder_noise_rad, robust_loss_sd and prior_scale must be > 0";
-    return false;
-  }
-  if (!(deadzone_resolution_sd > 0.0)) {
-    *error = "deadzone_resolution_sd must be > 0";
-    return false;
-  }
-  if (max_iterations < 1 || threads < 1 || !(identified_fraction > 0.0)) {
-    *error = "max_iterations and threads must be >= 1, identified_fraction > 0";
-    return false;
-  }
-  return paper.IsValid(error);
-}
 
 namespace detail {
 // joint_smoother_output.cpp: residual statistics, covariance, parameters.
@@ -329,12 +354,25 @@ IdentificationResult RunJointSmoother(const IdentificationData& data,
     const double dof = double(summary.num_residuals_reduced - summary.num_effective_parameters_reduced);
     const double variance_factor = dof > 0.0 ? std::max(1.0, 2.0 * summary.final_cost / dof) : 1.0;
     result.report += "  variance factor " + std::to_string(variance_factor) + "\n";
+    int clamps = 0, blocks = 0;
+    const Eigen::MatrixXd sandwich = problem.Sandwich(detail::SampleClusters(data, &clamps, &blocks));
+    result.report += "  covariance: clustered sandwich over " + std::to_string(clamps) +
+                     " tip_fixed segment(s) and " + std::to_string(blocks) +
+                     " block(s) of free-tip samples, never below the white noise's\n";
     Eigen::MatrixXd covariance;
     const bool ok = problem.GlobalCovariance(options, variance_factor, &covariance);
     detail::ConsiderResult considered;
-    if (ok && !held_indices.empty()) {
-      considered = detail::ConsiderCovariance(covariance, held_indices, held_sd);
-      covariance = considered.covariance;
+    if (ok) {
+      // The white noise's covariance (times the variance factor: s²·H⁻¹, as
+      // least squares states it) is the floor of the sandwich of the fitted
+      // parameters; the considered parameters' share is added to both.
+      considered.covariance = covariance;
+      considered.conditional = covariance;
+      if (!held_indices.empty())
+        considered = detail::ConsiderCovariance(covariance, held_indices, held_sd);
+      const Eigen::MatrixXd fitted = detail::NotBelow(sandwich, considered.conditional);
+      covariance = considered.covariance - considered.conditional + fitted;
+      considered.conditional = fitted;
     }
     detail::FillResult(data, prior, smoother_prior, options, &state, ok ? &covariance : nullptr,
                        &result);

@@ -141,3 +141,28 @@ SmootherState MakeInitialState(const IdentificationData& data, const SmootherPri
 }
 
 }  // namespace pliant::estimation::detail
+
+namespace pliant::estimation {
+
+bool JointSmootherOptions::IsValid(std::string* error) const {
+  if (bias_harmonics < 0 || bias_harmonics > detail::kMaxBiasHarmonics) {
+    *error = "bias_harmonics must be in [0, " + std::to_string(detail::kMaxBiasHarmonics) + "]";
+    return false;
+  }
+  if (!(effort_noise_nm > 0.0) || !(encoder_noise_rad > 0.0) || !(robust_loss_sd > 0.0) ||
+      !(prior_scale > 0.0)) {
+    *error = "effort_noise_nm, encoder_noise_rad, robust_loss_sd and prior_scale must be > 0";
+    return false;
+  }
+  if (!(deadzone_resolution_sd > 0.0)) {
+    *error = "deadzone_resolution_sd must be > 0";
+    return false;
+  }
+  if (max_iterations < 1 || threads < 1 || !(identified_fraction > 0.0)) {
+    *error = "max_iterations and threads must be >= 1, identified_fraction > 0";
+    return false;
+  }
+  return paper.IsValid(error);
+}
+
+}  // namespace pliant::estimation

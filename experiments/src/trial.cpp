@@ -25,25 +25,6 @@ namespace {
 
 constexpr int kCoverageEvery = 15;  // 0.01 s at 1.5 kHz
 
-// Scales a compliance law's K(L) by `scale` whatever its form.
-void ScaleCompliance(models::ComplianceLaw& law, double scale) {
-  auto& c = law.cubic.coefficients;
-  switch (law.form) {
-    case models::ComplianceForm::kInverseCubic:  // 1/K is the cubic
-      for (double& x : c) x /= scale;
-      break;
-    case models::ComplianceForm::kDirectCubic:
-      for (double& x : c) x *= scale;
-      break;
-    case models::ComplianceForm::kBeamSeries:  // the geometry l_c stays
-      for (int i : {models::kJointComplianceRadPerNm, models::kStructureComplianceRadPerN,
-                    models::kShaftFlexibilityPerNm2}) {
-        c[i] *= scale;
-      }
-      break;
-  }
-}
-
 // Identifies the trial's parameters on its calibration runs (paper's procedure).
 models::ModelParameters Identify(const Study& study, const Truth& truth, const TrialDraw& draw,
                                  TrialStream& stream) {
@@ -146,7 +127,7 @@ Truth TrialTruth(const Study& study, const TrialDraw& draw) {
   Truth truth = study.scenario.truth;
   for (int j = 0; j < 2; ++j) {
     auto& joint = truth.joints[j];
-    ScaleCompliance(joint.compliance, draw.values[kComplianceScale1 + j]);
+    models::ScaleCompliance(joint.compliance, draw.values[kComplianceScale1 + j]);
     joint.backlash_rad = draw.values[kBacklash1Rad + j];
     for (double& v : joint.bias_torque.torque_nm) v += draw.values[kBiasOffset1Nm + j];
     // Inside the clearance: the scenario refuses a shaft that starts on a wall.

@@ -165,6 +165,22 @@ double BiasTorqueAt(const JointParameters& joint, double angle_rad, double depth
   return t.torque_nm[i - 1] + w * (t.torque_nm[i] - t.torque_nm[i - 1]);
 }
 
+void ScaleCompliance(ComplianceLaw& law, double scale) {
+  auto& c = law.cubic.coefficients;
+  switch (law.form) {
+    case ComplianceForm::kInverseCubic:  // 1/K is the cubic
+      for (double& x : c) x /= scale;
+      break;
+    case ComplianceForm::kDirectCubic:
+      for (double& x : c) x *= scale;
+      break;
+    case ComplianceForm::kBeamSeries:
+      for (int i : {kJointComplianceRadPerNm, kStructureComplianceRadPerN, kShaftFlexibilityPerNm2})
+        c[i] *= scale;
+      break;
+  }
+}
+
 const char* ComplianceFormName(ComplianceForm form) {
   switch (form) {
     case ComplianceForm::kInverseCubic: return "inverse_cubic";

@@ -14,7 +14,7 @@ namespace pliant::estimation {
 namespace {
 
 std::string RealLog(const std::string& name) {
-  return std::string(PLIANT_SOURCE_DIR) + "/tests/data/jhu-2017/" + name + ".csv";
+  return std::string(PLIANT_SOURCE_DIR) + "/data/real/" + name + ".csv";
 }
 
 // Rank of a clamped sample's depth (5 mm bins) among its joint's depths.
@@ -32,8 +32,8 @@ int DepthRank(const IdentificationData& data, const IdentificationSample& sample
 // depths with that index parity (−1: all).
 IdentificationData RealData(int parity, bool joint2 = true) {
   IdentificationData data;
-  std::vector<std::string> logs = {"bias_sweep_joint1", "clamped_beam_joint1"};
-  if (joint2) logs.insert(logs.end(), {"bias_sweep_joint2", "clamped_beam_joint2"});
+  std::vector<std::string> logs = {"jhu2017_bias_j1", "jhu2017_clamped_j1"};
+  if (joint2) logs.insert(logs.end(), {"jhu2017_bias_j2", "jhu2017_clamped_j2"});
   for (const auto& name : logs) AppendSamples(io::ReadLog(RealLog(name)), name, {}, &data);
   if (parity >= 0) {  // the clamped depths in order, every other one (as clamped_cv.py)
     std::vector<IdentificationSample> kept;
@@ -99,7 +99,7 @@ TEST(QuasiStaticIdentification, AnUnrecordedJointKeepsItsPriorAndSaysSo) {
 
 TEST(QuasiStaticIdentification, RefusesLogsWithoutEnoughClampedDepths) {
   IdentificationData data;
-  AppendSamples(io::ReadLog(RealLog("bias_sweep_joint1")), "bias", {}, &data);
+  AppendSamples(io::ReadLog(RealLog("jhu2017_bias_j1")), "bias", {}, &data);
   EXPECT_THROW(RunQuasiStaticIdentification(data, PaperPrior()), std::invalid_argument);
 }
 

@@ -64,9 +64,6 @@ class ComplianceCorrector {
 
   const ExtraEffects& extra_effects() const { return extra_; }
 
-  /// A tare (unloaded_rows.h): N·m added to each joint's tau0.
-  void SetBiasOffset(const Eigen::Vector2d& offset_nm) { bias_offset_nm_ = offset_nm; }
-
   /// Size of equation (2)'s jump at |tau_ext| = tau_min for joint j (0 or 1), at
   /// depth L: δ + K(L)·tau_min (rad). Zero for the dead-zone model.
   double JumpAtThreshold(int joint, double depth_m) const;
@@ -80,7 +77,6 @@ class ComplianceCorrector {
   models::BacklashSignEffect backlash_sign_;
   models::BacklashDeadZoneEffect backlash_deadzone_;
   ExtraEffects extra_;
-  Eigen::Vector2d bias_offset_nm_ = Eigen::Vector2d::Zero();
   std::vector<double> bias_values_, fourier_values_, compliance_values_, sign_values_, deadzone_values_;
 };
 

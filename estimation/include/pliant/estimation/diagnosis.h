@@ -154,6 +154,11 @@ struct Diagnosis {
   std::vector<std::string> added_effects;
   /// The --add effects as fitted (jointly, on every compared row): parameters ± sd.
   std::vector<EffectFinding> added;
+  /// The base's compliance shares s_j (K → (1 + s_j)·K) and clearance
+  /// widenings d_j (δ → δ + d_j, rad) refitted with the --add effects
+  /// (compliance_share1, compliance_share2, clearance1, clearance2); empty
+  /// without --add or without DiagnoseOptions::recalibrate_base.
+  std::optional<EffectFinding> recalibration;
   /// Effects selected stepwise (each refitted with the ones before it), in order.
   std::vector<std::string> selected;
   /// What this log could not tell and why (an unrecorded joint, loads inside
@@ -178,5 +183,14 @@ void CheckEffectOptions(const DiagnoseOptions& options, const std::string& log_p
 /// problem and what to do.
 Diagnosis Diagnose(const io::Log& log, const std::string& log_path,
                    const models::ModelParameters& parameters, const DiagnoseOptions& options);
+
+/// The parameters with what the diagnosis fitted: each joint's K(L) scaled by
+/// 1 + s_j and its clearance δ_j widened by d_j (the recalibration), and the
+/// --add effects appended to `effects` with their values and sd, so that
+/// `pliant correct` and the filter apply them. The covariance of each law's
+/// coefficients scales with the law; the refit's variances add to δ's.
+/// `source` names the log in the parameters' sources.
+models::ModelParameters WithDiagnosedEffects(const models::ModelParameters& parameters,
+                                             const Diagnosis& diagnosis, const std::string& source);
 
 }  // namespace pliant::estimation

@@ -146,6 +146,10 @@ double ComplianceAt(const JointParameters& joint, double depth_m);
 /// tau0 (N·m) of a joint at its angle q (rad) and depth L (m), in either form.
 double BiasTorqueAt(const JointParameters& joint, double angle_rad, double depth_m);
 
+/// Scales a law's K(L) by `scale` at every depth, whatever its form (the
+/// beam series' geometry l_c stays).
+void ScaleCompliance(ComplianceLaw& law, double scale);
+
 /// "inverse_cubic", "direct_cubic", "beam_series" (the parameters file's words).
 const char* ComplianceFormName(ComplianceForm form);
 
