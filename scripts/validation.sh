@@ -12,7 +12,7 @@
 # directory (default: a new directory under /tmp, removed at the end unless --work is
 # given). --long adds the Monte Carlo studies of section 8, with 2 threads: divot 16 s,
 # known instrument 4 s, clamped 127-145 s, identify 401 s (each of its
-# 200 trials simulates and identifies a calibration).
+# 200 trials simulates and identifies a calibration), families 33 s (1.5 kHz) and 8 s (100 Hz).
 #
 # The real-data score (section 3) needs clamped_cv.py (docs/real-data.md); set CLAMPED_CV
 # to its path if it is not at /work/shared/tools/clamped_cv.py. Without it that step is
@@ -182,6 +182,13 @@ if [ $long -eq 1 ]; then
   for study in divot known_instrument clamped identify; do
     t0=$SECONDS
     show "$pliant" montecarlo experiments/studies/${study}_study.json -o "$work/mc_$study" \
+      --threads 2 --no-plots
+    echo "  ($((SECONDS - t0)) s)"
+  done
+  # The families: instruments, noise and sample rates unlike the defaults.
+  for study in families_1500hz families_100hz; do
+    t0=$SECONDS
+    show "$pliant" montecarlo experiments/studies/${study}.json -o "$work/mc_$study" \
       --threads 2 --no-plots
     echo "  ($((SECONDS - t0)) s)"
   done
