@@ -10,13 +10,13 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <map>
 #include <set>
-#include <sstream>
 #include <string>
 #include <vector>
 
+#include "pliant/io/log_reader.h"
+#include "pliant/io/log_writer.h"
 #include "run_command.h"
 
 namespace pliant {
@@ -24,57 +24,23 @@ namespace {
 
 namespace fs = std::filesystem;
 using testing::FreshDirectory;
-using testing::ReadText;
 using testing::RunCommand;
 
 const std::string kCli = PLIANT_CLI;
 const std::string kReal = PLIANT_SOURCE_DIR "/data/real/";
 
-struct Csv {
-  std::vector<std::string> metadata;
-  std::vector<std::string> header;
-  std::vector<std::vector<std::string>> rows;
-  int Column(const std::string& name) const {
-    const auto it = std::find(header.begin(), header.end(), name);
-    return it == header.end() ? -1 : int(it - header.begin());
-  }
-};
-
-std::vector<std::string> Split(const std::string& line) {
-  std::vector<std::string> cells;
-  std::istringstream in(line);
-  for (std::string cell; std::getline(in, cell, ',');) cells.push_back(cell);
-  if (!line.empty() && line.back() == ',') cells.emplace_back();
-  return cells;
-}
-
-Csv Read(const fs::path& path) {
-  Csv csv;
-  std::istringstream in(ReadText(path));
-  for (std::string line; std::getline(in, line);) {
-    if (csv.header.empty() && !line.empty() && line[0] == '#') {
-      csv.metadata.push_back(line);
-    } else if (csv.header.empty()) {
-      csv.header = Split(line);
-    } else if (!line.empty()) {
-      csv.rows.push_back(Split(line));
-    }
-  }
-  return csv;
-}
-
 // The depth bin of each row (5 mm of q3), as clamped_cv.py.
-std::vector<long> DepthBins(const Csv& csv) {
-  const int q3 = csv.Column("q3");
+std::vector<long> DepthBins(const io::Log& log) {
+  const int q3 = log.header.Index("q3");
   std::vector<long> bins;
-  for (const auto& row : csv.rows) bins.push_back(std::lround(std::stod(row.at(q3)) / 0.005));
+  for (std::size_t r = 0; r < log.Rows(); ++r) bins.push_back(std::lround(log.Value(r, q3) / 0.005));
   return bins;
 }
 
 // The depths of one parity (0: the first, third, … depth), without the
 // columns that say where the tip is when `blind`.
-void WriteHalf(const Csv& csv, int parity, bool blind, const fs::path& out) {
-  const std::vector<long> bins = DepthBins(csv);
+void WriteHalf(const io::Log& log, int parity, bool blind, const fs::path& out) {
+  const std::vector<long> bins = DepthBins(log);
   const std::set<long> distinct(bins.begin(), bins.end());
   const std::vector<long> levels(distinct.begin(), distinct.end());
   std::set<long> keep;
@@ -82,32 +48,32 @@ void WriteHalf(const Csv& csv, int parity, bool blind, const fs::path& out) {
     if (int(i % 2) == parity) keep.insert(levels[i]);
   }
   const std::set<std::string> hidden = {"tip_fixed", "q1_ref", "q2_ref", "q1_true", "q2_true"};
-  std::vector<int> columns;
-  for (size_t c = 0; c < csv.header.size(); ++c) {
-    if (!(blind && hidden.count(csv.header[c]))) columns.push_back(int(c));
+  io::Log half;
+  half.header.metadata = log.header.metadata;
+  half.header.joint_recorded = log.header.joint_recorded;
+  std::vector<std::size_t> columns;
+  for (std::size_t c = 0; c < log.Columns(); ++c) {
+    if (blind && hidden.count(log.header.columns[c])) continue;
+    columns.push_back(c);
+    half.header.columns.push_back(log.header.columns[c]);
   }
-  std::ofstream f(out);
-  for (const auto& line : csv.metadata) f << line << '\n';
-  const auto write = [&](const std::vector<std::string>& cells) {
-    for (size_t i = 0; i < columns.size(); ++i) f << (i ? "," : "") << cells.at(columns[i]);
-    f << '\n';
-  };
-  write(csv.header);
-  for (size_t r = 0; r < csv.rows.size(); ++r) {
-    if (keep.count(bins[r])) write(csv.rows[r]);
+  for (std::size_t r = 0; r < log.Rows(); ++r) {
+    if (!keep.count(bins[r])) continue;
+    for (std::size_t c : columns) half.values.push_back(log.Value(r, c));
   }
+  io::WriteLog(out.string(), half);
 }
 
 // The standard deviation of q<joint>_corr per depth of an output, rad.
 std::vector<double> SpreadPerDepth(const fs::path& output, int joint) {
-  const Csv csv = Read(output);
-  const int col = csv.Column("q" + std::to_string(joint) + "_corr");
+  const io::Log log = io::ReadLog(output.string());
+  const int col = log.header.Index("q" + std::to_string(joint) + "_corr");
   EXPECT_GE(col, 0);
-  const std::vector<long> bins = DepthBins(csv);
+  const std::vector<long> bins = DepthBins(log);
   std::map<long, std::vector<double>> by_depth;
-  for (size_t r = 0; r < csv.rows.size(); ++r) {
-    const std::string& cell = csv.rows[r].at(col);
-    if (!cell.empty()) by_depth[bins[r]].push_back(std::stod(cell));
+  for (std::size_t r = 0; r < log.Rows(); ++r) {
+    const double q = log.Value(r, std::size_t(col));
+    if (std::isfinite(q)) by_depth[bins[r]].push_back(q);
   }
   std::vector<double> spreads;
   for (const auto& [bin, q] : by_depth) {
@@ -127,8 +93,8 @@ struct Score {
 
 std::map<std::string, Score> CrossValidate(const fs::path& dir,
                                            const std::vector<std::string>& commands) {
-  const Csv clamped[2] = {Read(kReal + "jhu2017_clamped_j1.csv"),
-                          Read(kReal + "jhu2017_clamped_j2.csv")};
+  const io::Log clamped[2] = {io::ReadLog(kReal + "jhu2017_clamped_j1.csv"),
+                              io::ReadLog(kReal + "jhu2017_clamped_j2.csv")};
   std::map<std::string, std::vector<double>> spreads[2];
   for (int parity = 0; parity < 2; ++parity) {
     std::string train;
