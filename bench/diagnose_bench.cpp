@@ -45,7 +45,7 @@ void BM_FilterBaseline(benchmark::State& state) {
     pliant::estimation::ComplianceFilter filter(pliant::testing::ModelOf(f.scenario));
     for (std::size_t r = 0; r < f.log.Rows(); ++r)
       benchmark::DoNotOptimize(
-          filter.Step(pliant::estimation::SampleFromRow(columns, &f.log.values[r * f.log.Columns()])));
+          filter.Step(pliant::estimation::SampleFromRow(columns, &f.log.values[r * f.log.Columns()], false)));
   }
   state.counters["rows"] = double(f.log.Rows());
 }

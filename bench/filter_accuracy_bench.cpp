@@ -155,7 +155,7 @@ int main(int argc, char** argv) {
     std::size_t rejected = 0, reacquired = 0, mismatch = 0;
     for (std::size_t r = 0; r < rows; ++r) {
       const double* v = &log.values[r * cols];
-      auto s = estimation::SampleFromRow(c, v);
+      auto s = estimation::SampleFromRow(c, v, false);
       if (free_tip) s.tip_fixed = false;
       const Eigen::Vector3d q(v[c.q1], v[c.q2], v[c.q3]);
       const Eigen::Vector2d tau(v[c.tau1], v[c.tau2]);

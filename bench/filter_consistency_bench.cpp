@@ -236,7 +236,7 @@ int main(int argc, char** argv) {
       estimation::ConsistencyTally run_held;
       for (std::size_t r = 0; r < rows; ++r) {
         const double* v = &log.values[r * cols];
-        const auto s = estimation::SampleFromRow(c, v);
+        const auto s = estimation::SampleFromRow(c, v, false);
         const auto e = filter.Step(s);
         const Eigen::Vector2d error = e.corrected_rad - Eigen::Vector2d(v[c.q1_true], v[c.q2_true]);
         if (r == chosen) one_per_run.Add(error, e.covariance_rad2, false);

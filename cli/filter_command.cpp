@@ -70,7 +70,8 @@ io::InputError OptionError(const std::string& error) {
       {"effort_noise_nm", "--effort-noise"},    {"encoder_noise_rad", "--encoder-noise"},
       {"external_torque_rate_nm", "--torque-rate"}, {"compliance_scale_sd", "--compliance-sd"},
       {"gate_probability", "--gate"},            {"mismatch_window", "--mismatch-window"},
-      {"inertial_torque_error", "--inertial-error"}, {"unloaded_start_s", "--unloaded-start"}};
+      {"inertial_torque_error", "--inertial-error"}, {"unloaded_start_s", "--unloaded-start"},
+      {"reference_noise_rad", "--fuse-reference"}};
   std::string problem = error;
   const std::string prefix = "FilterOptions::";
   if (problem.rfind(prefix, 0) == 0) problem.erase(0, prefix.size());
@@ -154,6 +155,14 @@ Command AddFilterCommand(CLI::App& app) {
   sub->add_option("--compliance-sd", f.compliance_scale_sd,
                   "Prior σ of the compliance scale (1 = the parameters' K(L))")
       ->capture_default_str();
+  sub->add_option_function<double>(
+      "--fuse-reference",
+      [&f](double sd_rad) {
+        f.fuse_log_reference = true;
+        f.reference_noise_rad = sd_rad;
+      },
+      "Take the log's q1_ref, q2_ref columns (a tracker) as measurements of the tip with this "
+      "noise σ, rad (default: not fused; they only score the output, docs/filter.md)");
   sub->add_option("--gate", f.gate_probability,
                   "Probability a measurement the model explains passes the χ² gate")
       ->capture_default_str();

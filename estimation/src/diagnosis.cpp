@@ -76,7 +76,8 @@ void AddFilterNis(const io::Log& log, const models::ModelParameters& parameters,
   for (const auto& sample : problem.samples) compared[sample.row] = true;
   double nis = 0.0, dof = 0.0;
   for (std::size_t r = 0; r < log.Rows(); ++r) {
-    const FilterEstimate e = filter.Step(SampleFromRow(columns, &log.values[r * log.Columns()]));
+    const FilterEstimate e = filter.Step(
+        SampleFromRow(columns, &log.values[r * log.Columns()], options.filter.fuse_log_reference));
     if (compared[r] && e.nis_dof > 0) nis += e.nis, dof += e.nis_dof;
   }
   s.mean_nis = dof > 0.0 ? nis / dof : 0.0;

@@ -114,13 +114,13 @@ class Tally {
 
 }  // namespace
 
-FilterSample SampleFromRow(const io::StandardColumns& c, const double* row) {
+FilterSample SampleFromRow(const io::StandardColumns& c, const double* row, bool fuse_reference) {
   FilterSample s;
   s.time_s = row[c.t];
   s.encoder_rad << row[c.q1], row[c.q2];
   s.insertion_depth_m = row[c.q3];
   s.effort_nm << row[c.tau1], row[c.tau2];
-  s.reference_rad << Optional(row, c.q1_ref), Optional(row, c.q2_ref);
+  if (fuse_reference) s.reference_rad << Optional(row, c.q1_ref), Optional(row, c.q2_ref);
   s.tip_fixed = Optional(row, c.tip_fixed) >= 0.5;  // NaN compares false: not fixed
   return s;
 }
@@ -158,7 +158,7 @@ LogFilterSummary SmoothLog(const std::string& input_path, const std::string& out
   std::size_t rows = 0;
   while (const double* values = reader.Next()) {
     input_rows.Append(values, input_columns);
-    const FilterEstimate e = smoother.Add(SampleFromRow(in, values));
+    const FilterEstimate e = smoother.Add(SampleFromRow(in, values, used.fuse_log_reference));
     tally.Count(e);
     tally.Accuracy(values, e, &summary->filtered, true);
     ++rows;
@@ -171,7 +171,7 @@ LogFilterSummary SmoothLog(const std::string& input_path, const std::string& out
     input_rows.Read(first * input_columns, block_rows.size(), block_rows.data());
     samples->clear();
     for (std::size_t r = 0; r < count; ++r) {
-      samples->push_back(SampleFromRow(in, &block_rows[r * input_columns]));
+      samples->push_back(SampleFromRow(in, &block_rows[r * input_columns], used.fuse_log_reference));
     }
   };
   const auto take = [&](std::size_t first, const std::vector<FilterEstimate>& estimates) {
@@ -235,7 +235,7 @@ LogFilterSummary FilterLog(const std::string& input_path, const std::string& out
     std::vector<double> row(header.columns.size());
     while (const double* values = reader.Next()) {
       std::copy(values, values + input_columns, row.begin());
-      const FilterEstimate e = filter.Step(SampleFromRow(in, values));
+      const FilterEstimate e = filter.Step(SampleFromRow(in, values, used.fuse_log_reference));
       out.Fill(e, row.data());
       writer.Write(row.data());
       tally.Count(e);

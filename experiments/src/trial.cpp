@@ -201,7 +201,7 @@ TrialResult RunTrial(const Study& study, int trial) {
   };
   for (std::size_t r = 0; r < rows; ++r) {
     const double* v = &log.values[r * cols];
-    const auto sample = estimation::SampleFromRow(c, v);
+    const auto sample = estimation::SampleFromRow(c, v, options.fuse_log_reference);
     const auto filtered = smoother.Add(sample);
     if (!sample.tip_fixed) continue;
     const Eigen::Vector3d q(v[c.q1], v[c.q2], v[c.q3]);

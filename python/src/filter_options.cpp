@@ -23,6 +23,7 @@ const std::pair<const char*, Field> kFields[] = {
     {"encoder_noise_rad", &FilterOptions::encoder_noise_rad},
     {"effort_noise_nm", &FilterOptions::effort_noise_nm},
     {"reference_noise_rad", &FilterOptions::reference_noise_rad},
+    {"fuse_log_reference", &FilterOptions::fuse_log_reference},
     {"external_torque_rate_nm", &FilterOptions::external_torque_rate_nm},
     {"compliance_scale_sd", &FilterOptions::compliance_scale_sd},
     {"backlash_sd_rad", &FilterOptions::backlash_sd_rad},

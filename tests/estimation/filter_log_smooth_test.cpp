@@ -35,7 +35,7 @@ TEST(FilterLogSmooth, WritesFilterSmoothersEstimatesToTheBit) {
   const io::StandardColumns columns(input.header);
   FilterSmoother smoother(parameters, options);
   for (std::size_t r = 0; r < input.Rows(); ++r) {
-    smoother.Add(SampleFromRow(columns, &input.values[r * input.Columns()]));
+    smoother.Add(SampleFromRow(columns, &input.values[r * input.Columns()], options.fuse_log_reference));
   }
   smoother.Smooth();
   const io::Log log = io::ReadLog(out);

@@ -41,8 +41,11 @@ struct LogFilterSummary {
   std::vector<std::string> notes;
 };
 
-/// The sample the filter sees in one row of a log with these columns.
-FilterSample SampleFromRow(const io::StandardColumns& columns, const double* row);
+/// The sample the filter sees in one row of a log with these columns; the
+/// q*_ref columns become its reference only with fuse_reference
+/// (FilterOptions::fuse_log_reference).
+FilterSample SampleFromRow(const io::StandardColumns& columns, const double* row,
+                           bool fuse_reference);
 
 /// Throws io::InputError for a bad log and std::system_error when the output
 /// cannot be written; no output file is left behind then.

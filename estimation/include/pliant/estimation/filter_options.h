@@ -19,7 +19,13 @@ struct FilterOptions {
   // Measurement noise (standard deviations).
   double encoder_noise_rad = 7.7e-6 / 3.4641016151377544;  ///< one count / √12
   double effort_noise_nm = 0.01;
-  double reference_noise_rad = 5e-5;   ///< q1_ref, q2_ref (an optical tracker)
+  double reference_noise_rad = 5e-5;   ///< a sample's reference_rad (an optical tracker)
+  /// A log's q1_ref, q2_ref columns as measurements of the tip (σ
+  /// reference_noise_rad). Off: they only score the output. A validation
+  /// log's tracker is what the corrected joints are compared with; fused with
+  /// a σ it does not have (a tracker of 0.3 mrad read as 0.05), it was
+  /// rejected on most rows and shrank q_sd 30-fold below the error.
+  bool fuse_log_reference = false;
   // Process noise (standard deviations per √s).
   double external_torque_rate_nm = 0.1;   ///< σ_τ̇, N·m/√s
   /// With the tip held, the load is the shaft's bend, held at both ends: it
