@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <memory>
 #include <stdexcept>
@@ -17,6 +18,7 @@
 #include "identification_costs.h"
 #include "joint_smoother_sandwich.h"
 #include "joint_smoother_setup.h"
+#include "joint_smoother_width.h"
 
 namespace pliant::estimation {
 namespace {
@@ -46,7 +48,6 @@ class SmootherProblem {
  public:
   SmootherProblem(const IdentificationData& data, const SmootherPrior& prior,
                   const JointSmootherOptions& options, const Noise& noise,
-                  const std::array<double, 2>& width_floor_nm,
                   const detail::UndeterminedParameters& held, SmootherState* state)
       : state_(state), held_(held), huber_(options.robust_loss_sd),
         beam_(options.law == models::ComplianceForm::kBeamSeries),
@@ -75,18 +76,11 @@ class SmootherProblem {
       }
       Global(delta_[j], 1, &prior.delta_rad[j], &prior.delta_sd[j]);
       problem_->SetParameterLowerBound(delta_[j], 0, 0.0);
+      // w is held in every solve: it is profiled outside (joint_smoother_width.h),
+      // since Levenberg–Marquardt crawls where a hard contact drives it to the
+      // floor and the dead zone turns into a step.
       Global(width_[j], 1, &prior.log_width[j], &prior.log_width_sd[j]);
-      // The take-up of the clearance cannot be resolved below the effort noise
-      // of one sample; a hard contact would otherwise drive w to 0, where the
-      // dead zone turns into a step no derivative can follow.
-      const double floor = std::log(width_floor_nm[j]);
-      if (options.estimate_deadzone_width) {
-        *width_[j] = std::max(*width_[j], floor);
-        problem_->SetParameterLowerBound(width_[j], 0, floor);
-      } else {
-        *width_[j] = floor;
-        problem_->SetParameterBlockConstant(width_[j]);
-      }
+      problem_->SetParameterBlockConstant(width_[j]);
       Global(bias_[j], nb, prior.bias[j].data(), prior.bias_sd[j].data());
       if (!options.bias_depth_term) {
         problem_->SetManifold(bias_[j], new ceres::SubsetManifold(nb, {nb - 1}));
@@ -146,6 +140,39 @@ class SmootherProblem {
     return summary;
   }
 
+  struct Snapshot {
+    std::vector<double> globals;
+    std::vector<std::array<double, 2>> tau_ext_nm;
+  };
+  Snapshot Save() const { return {globals_, state_->tau_ext_nm}; }
+  void Restore(const Snapshot& s) {
+    std::copy(s.globals.begin(), s.globals.end(), globals_.begin());
+    std::copy(s.tau_ext_nm.begin(), s.tau_ext_nm.end(), state_->tau_ext_nm.begin());
+    CopyBack();
+  }
+
+  // ∂cost/∂log w_j at the current values (the widths freed for the evaluation).
+  std::array<double, 2> WidthSlope() {
+    for (double* w : width_) problem_->SetParameterBlockVariable(w);
+    ceres::Problem::EvaluateOptions evaluate;
+    evaluate.parameter_blocks = {width_[0], width_[1]};
+    std::vector<double> gradient;
+    problem_->Evaluate(evaluate, nullptr, nullptr, &gradient, nullptr);
+    for (double* w : width_) problem_->SetParameterBlockConstant(w);
+    return {gradient[0], gradient[1]};
+  }
+
+  void HoldLogWidths(const std::array<double, 2>& log_width) {
+    for (int j = 0; j < 2; ++j) *width_[j] = log_width[j];
+  }
+
+  // The covariance is the fit's with w free: its uncertainty is carried into
+  // the others' (a profiled parameter's curvature is the full Hessian's).
+  void FreeWidths() {
+    if (!estimate_width_) return;
+    for (int j = 0; j < 2; ++j) problem_->SetParameterBlockVariable(width_[j]);
+  }
+
   // The global blocks as the covariance lays them out: law1, law2, delta1,
   // delta2, log w1, log w2, bias1, bias2, in physical units.
   std::vector<detail::GlobalBlock> Layout() {
@@ -178,6 +205,7 @@ class SmootherProblem {
     for (auto& tau : state_->tau_ext_nm)
       for (double& t : tau)
         if (problem_->HasParameterBlock(&t)) nuisance.push_back(&t);
+    FreeWidths();
     const auto layout = Layout();
     const Eigen::Index size = layout.back().offset + Eigen::Index(layout.back().scale.size());
     return detail::SmootherSandwich(problem_.get(), layout, nuisance, residuals_, sample_of_residual_,
@@ -194,6 +222,7 @@ class SmootherProblem {
       blocks.push_back(b.values);
       scale.insert(scale.end(), b.scale.begin(), b.scale.end());
     }
+    FreeWidths();
     // The held parameters are free here: their columns give the sensitivity of
     // the others to them (consider_covariance.h).
     for (int j = 0; j < 2; ++j) {
@@ -278,6 +307,38 @@ class SmootherProblem {
   std::shared_ptr<ceres::ParameterBlockOrdering> ordering_;
 };
 
+// The take-up widths profiled (joint_smoother_width.h) up to the largest load
+// the clamps put on each joint (a wider take-up never reaches the wall in the
+// log) and left held there; every solve starts from the best one so far.
+std::string ProfileTakeUp(const IdentificationData& data, const SmootherState& state,
+                          const JointSmootherOptions& options, const std::array<double, 2>& log_floor,
+                          const detail::UndeterminedParameters& held, SmootherProblem* problem) {
+  detail::WidthSearch search;
+  search.lower = log_floor;
+  for (int j = 0; j < 2; ++j) {
+    double largest = 0.0;
+    for (std::size_t i = 0; i < data.samples.size(); ++i)
+      if (data.samples[i].tip_fixed) largest = std::max(largest, std::abs(state.tau_ext_nm[i][j]));
+    search.upper[j] = std::max(log_floor[j], std::log(largest));
+    search.search[j] = !held.backlash[j];
+  }
+  double best = HUGE_VAL;
+  SmootherProblem::Snapshot best_state = problem->Save();
+  search.solve_at = [&](const std::array<double, 2>& log_width) {
+    problem->Restore(best_state);
+    problem->HoldLogWidths(log_width);
+    const ceres::Solver::Summary summary = problem->Solve(options);
+    if (summary.IsSolutionUsable() && summary.final_cost < best)
+      best = summary.final_cost, best_state = problem->Save();
+    return summary;
+  };
+  search.slope = [&] { return problem->WidthSlope(); };
+  const detail::WidthProfile profile = detail::ProfileWidths(search);
+  problem->Restore(best_state);
+  problem->HoldLogWidths(profile.log_width);
+  return detail::Describe(profile, search);
+}
+
 }  // namespace
 
 namespace detail {
@@ -324,19 +385,23 @@ IdentificationResult RunJointSmoother(const IdentificationData& data,
     }
 
   }
-  // The dead-zone floor, fixed before the first pass so that the second starts
-  // where the first ended (a new w would move every latent in the clearance).
-  std::array<double, 2> width_floor_nm;
+  // The take-up of the clearance cannot be resolved below the effort noise of
+  // one sample: w's floor, fixed before the first pass, which holds w there.
+  std::array<double, 2> log_floor;
   for (int j = 0; j < 2; ++j) {
-    width_floor_nm[j] =
-        options.deadzone_resolution_sd * noise.effort_fixed_nm[j] / std::sqrt(TypicalRows(data));
+    log_floor[j] = std::log(options.deadzone_resolution_sd * noise.effort_fixed_nm[j] /
+                            std::sqrt(TypicalRows(data)));
   }
+  state.log_width = log_floor;
   IdentificationResult result;
   result.method = "smoother";
   result.depth_estimates = paper.depth_estimates;
   // Two passes: the second weighs the samples by the noise the first found.
   for (int pass = 0; pass < 2; ++pass) {
-    SmootherProblem problem(data, smoother_prior, options, noise, width_floor_nm, held, &state);
+    SmootherProblem problem(data, smoother_prior, options, noise, held, &state);
+    if (pass == 1 && options.estimate_deadzone_width) {
+      result.report += ProfileTakeUp(data, state, options, log_floor, held, &problem);
+    }
     const ceres::Solver::Summary summary = problem.Solve(options);
     result.report += "pass " + std::to_string(pass + 1) + ": " + summary.BriefReport() +
                      " (" + std::to_string(summary.total_time_in_seconds) + " s)\n";

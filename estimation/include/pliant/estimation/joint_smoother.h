@@ -50,7 +50,7 @@ struct JointSmootherOptions {
   /// false (default): w is held at that floor — fast and, for a hard contact,
   /// where the estimate ends anyway; true: w is estimated above the floor
   /// (2–5 times slower; its σ is then reported).
-  bool estimate_deadzone_width = false;
+  bool estimate_deadzone_width = true;
   int max_iterations = 100;
   int threads = 1;
   /// A parameter whose posterior sd exceeds this fraction of its prior sd is
