@@ -129,14 +129,15 @@ IdentificationResult RunJointSmoother(const IdentificationData& data,
   result.method = "smoother";
   result.depth_estimates = paper.depth_estimates;
   // Two passes: the second weighs the samples by the noise the first found.
+  std::string width_line;
   for (int pass = 0; pass < 2; ++pass) {
     SmootherProblem problem(data, smoother_prior, options, noise, held, &state);
     if (pass == 1 && options.estimate_deadzone_width) {
-      result.report += ProfileTakeUp(data, state, options, log_floor, held, &problem);
+      width_line = ProfileTakeUp(data, state, options, log_floor, held, &problem);
     }
     const ceres::Solver::Summary summary = problem.Solve(options);
     result.report += "pass " + std::to_string(pass + 1) + ": " + summary.BriefReport() +
-                     " (" + std::to_string(summary.total_time_in_seconds) + " s)\n";
+                     " (" + std::to_string(summary.total_time_in_seconds) + " s)\n" + width_line;
     if (!summary.IsSolutionUsable()) {
       throw std::runtime_error("the joint smoother failed: " + summary.message);
     }
