@@ -42,9 +42,11 @@ double TypicalRows(const IdentificationData& data) {
 // The take-up widths profiled (joint_smoother_width.h) up to the largest load
 // the clamps put on each joint (a wider take-up never reaches the wall in the
 // log) and left held there; every solve starts from the best one so far.
+// `above_floor`: the joints whose width the profile put above its floor.
 std::string ProfileTakeUp(const IdentificationData& data, const SmootherState& state,
                           const JointSmootherOptions& options, const std::array<double, 2>& log_floor,
-                          const detail::UndeterminedParameters& held, SmootherProblem* problem) {
+                          const detail::UndeterminedParameters& held, SmootherProblem* problem,
+                          std::array<bool, 2>* above_floor) {
   detail::WidthSearch search;
   search.lower = log_floor;
   for (int j = 0; j < 2; ++j) {
@@ -68,6 +70,7 @@ std::string ProfileTakeUp(const IdentificationData& data, const SmootherState& s
   const detail::WidthProfile profile = detail::ProfileWidths(search);
   problem->Restore(best_state);
   problem->HoldLogWidths(profile.log_width);
+  *above_floor = {!profile.at_floor[0], !profile.at_floor[1]};
   return detail::Describe(profile, search);
 }
 
@@ -80,7 +83,7 @@ Noise RescaledNoise(const IdentificationData& data, const SmootherState& state,
 void FillResult(const IdentificationData& data, const models::ModelParameters& prior,
                 const SmootherPrior& smoother_prior, const JointSmootherOptions& options,
                 SmootherState* state, const Eigen::MatrixXd* covariance,
-                IdentificationResult* result);
+                const std::array<bool, 2>& width_fitted, IdentificationResult* result);
 }  // namespace detail
 
 IdentificationResult RunJointSmoother(const IdentificationData& data,
@@ -130,10 +133,11 @@ IdentificationResult RunJointSmoother(const IdentificationData& data,
   result.depth_estimates = paper.depth_estimates;
   // Two passes: the second weighs the samples by the noise the first found.
   std::string width_line;
+  std::array<bool, 2> width_fitted{false, false};
   for (int pass = 0; pass < 2; ++pass) {
     SmootherProblem problem(data, smoother_prior, options, noise, held, &state);
     if (pass == 1 && options.estimate_deadzone_width) {
-      width_line = ProfileTakeUp(data, state, options, log_floor, held, &problem);
+      width_line = ProfileTakeUp(data, state, options, log_floor, held, &problem, &width_fitted);
     }
     const ceres::Solver::Summary summary = problem.Solve(options);
     result.report += "pass " + std::to_string(pass + 1) + ": " + summary.BriefReport() +
@@ -173,7 +177,7 @@ IdentificationResult RunJointSmoother(const IdentificationData& data,
       considered.conditional = fitted;
     }
     detail::FillResult(data, prior, smoother_prior, options, &state, ok ? &covariance : nullptr,
-                       &result);
+                       width_fitted, &result);
     if (ok && !held_indices.empty()) {
       for (const auto& w : detail::HeldParameterWarnings(result.parameters, considered.conditional, held))
         result.warnings.push_back(w);
