@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <memory>
 #include <stdexcept>
@@ -16,13 +17,16 @@
 #include "identification_consider.h"
 #include "identification_costs.h"
 #include "joint_smoother_sandwich.h"
+#include "joint_smoother_problem.h"
 #include "joint_smoother_setup.h"
+#include "joint_smoother_width.h"
 
 namespace pliant::estimation {
 namespace {
 
 using detail::SmootherPrior;
 using detail::SmootherState;
+using detail::SmootherProblem;
 
 using Noise = detail::SmootherNoise;
 
@@ -35,248 +39,40 @@ double TypicalRows(const IdentificationData& data) {
   return rows[rows.size() / 2];
 }
 
-ceres::CostFunction* Prior(const double* mean, const double* sd, int n) {
-  ceres::Matrix a = ceres::Matrix::Zero(n, n);
-  ceres::Vector b(n);
-  for (int i = 0; i < n; ++i) a(i, i) = 1.0 / sd[i], b[i] = mean[i];
-  return new ceres::NormalPrior(a, b);
-}
-
-class SmootherProblem {
- public:
-  SmootherProblem(const IdentificationData& data, const SmootherPrior& prior,
-                  const JointSmootherOptions& options, const Noise& noise,
-                  const std::array<double, 2>& width_floor_nm,
-                  const detail::UndeterminedParameters& held, SmootherState* state)
-      : state_(state), held_(held), huber_(options.robust_loss_sd),
-        beam_(options.law == models::ComplianceForm::kBeamSeries),
-        bias_depth_term_(options.bias_depth_term),
-        estimate_width_(options.estimate_deadzone_width) {
-    ceres::Problem::Options problem_options;
-    problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
-    problem_ = std::make_unique<ceres::Problem>(problem_options);
-    ordering_ = std::make_shared<ceres::ParameterBlockOrdering>();
-    const std::array<models::ComplianceForm, 2> forms{options.law, options.law};
-    const bool beam = options.law == models::ComplianceForm::kBeamSeries;
-    const int h = options.bias_harmonics, nb = 2 * h + 2;
-    LayOut(*state, nb);
-    for (int j = 0; j < 2; ++j) {
-      // The law in units of its prior sd (identification_costs.h says why).
-      std::array<double, 4> scaled_mean, unit{1.0, 1.0, 1.0, 1.0};
-      for (int i = 0; i < 4; ++i) {
-        law_scale_[j][i] = prior.law_sd[j][i];
-        law_[j][i] = state->law[j][i] / law_scale_[j][i];
-        scaled_mean[i] = prior.law[j][i] / law_scale_[j][i];
-      }
-      Global(law_[j], 4, scaled_mean.data(), unit.data());
-      if (beam) {  // l_c is geometry; the three compliances are >= 0
-        problem_->SetManifold(law_[j], new ceres::SubsetManifold(4, {3}));
-        for (int i = 0; i < 3; ++i) problem_->SetParameterLowerBound(law_[j], i, 0.0);
-      }
-      Global(delta_[j], 1, &prior.delta_rad[j], &prior.delta_sd[j]);
-      problem_->SetParameterLowerBound(delta_[j], 0, 0.0);
-      Global(width_[j], 1, &prior.log_width[j], &prior.log_width_sd[j]);
-      // The take-up of the clearance cannot be resolved below the effort noise
-      // of one sample; a hard contact would otherwise drive w to 0, where the
-      // dead zone turns into a step no derivative can follow.
-      const double floor = std::log(width_floor_nm[j]);
-      if (options.estimate_deadzone_width) {
-        *width_[j] = std::max(*width_[j], floor);
-        problem_->SetParameterLowerBound(width_[j], 0, floor);
-      } else {
-        *width_[j] = floor;
-        problem_->SetParameterBlockConstant(width_[j]);
-      }
-      Global(bias_[j], nb, prior.bias[j].data(), prior.bias_sd[j].data());
-      if (!options.bias_depth_term) {
-        problem_->SetManifold(bias_[j], new ceres::SubsetManifold(nb, {nb - 1}));
-      }
-      // What the logs cannot determine stays at its prior mean (GlobalCovariance
-      // carries its prior sd into the others'): fitted, it would soak up
-      // whatever the model misses and report a tiny sd.
-      if (held_.backlash[j]) problem_->SetParameterBlockConstant(delta_[j]);
-      if (held_.bias[j]) problem_->SetParameterBlockConstant(bias_[j]);
-    }
-    for (auto& [segment, tip] : tip_) {
-      for (int j = 0; j < 2; ++j) {
-        // A weak prior (0.1 rad) keeps a tip the samples barely see finite.
-        const double sd = 0.1;
-        Add(-1, Prior(tip + j, &sd, 1), nullptr, tip + j);
-        ordering_->AddElementToGroup(tip + j, 1);
-      }
-    }
-    for (std::size_t i = 0; i < data.samples.size(); ++i) {
-      const auto& s = data.samples[i];
-      const double rows = std::sqrt(double(s.rows));
-      for (int j = 0; j < 2; ++j) {
-        if (!s.tip_fixed) {
-          Add(int(i),
-              detail::NewEffortResidual(s, j, h, options.bias_reference_depth_m,
-                                        noise.effort_free_nm[j] / rows, false),
-              &huber_, bias_[j]);
-          continue;
-        }
-        double* tau = &state->tau_ext_nm[i][j];
-        Add(int(i),
-            detail::NewEffortResidual(s, j, h, options.bias_reference_depth_m,
-                                      noise.effort_fixed_nm[j] / rows, true),
-            &huber_, bias_[j], tau);
-        Add(int(i),
-            detail::NewAngleResidual(s, j, forms, law_scale_[j], noise.angle_fixed_rad[j] / rows),
-            &huber_, tau, tip_.at(s.segment) + j, law_[j], delta_[j], width_[j]);
-        ordering_->AddElementToGroup(tau, 0);  // eliminated first (Schur complement)
-      }
-    }
+// The take-up widths profiled (joint_smoother_width.h) up to the largest load
+// the clamps put on each joint (a wider take-up never reaches the wall in the
+// log) and left held there; every solve starts from the best one so far.
+// `above_floor`: the joints whose width the profile put above its floor.
+std::string ProfileTakeUp(const IdentificationData& data, const SmootherState& state,
+                          const JointSmootherOptions& options, const std::array<double, 2>& log_floor,
+                          const detail::UndeterminedParameters& held, SmootherProblem* problem,
+                          std::array<bool, 2>* above_floor) {
+  detail::WidthSearch search;
+  search.lower = log_floor;
+  for (int j = 0; j < 2; ++j) {
+    double largest = 0.0;
+    for (std::size_t i = 0; i < data.samples.size(); ++i)
+      if (data.samples[i].tip_fixed) largest = std::max(largest, std::abs(state.tau_ext_nm[i][j]));
+    search.upper[j] = std::max(log_floor[j], std::log(largest));
+    search.search[j] = !held.backlash[j];
   }
-
-  ceres::Solver::Summary Solve(const JointSmootherOptions& options) {
-    ceres::Solver::Options solver;
-    // Reduced system: tips (block diagonal) bordered by the globals, an arrow
-    // that sparse Cholesky factors in time linear in the number of segments.
-    solver.linear_solver_type = ceres::SPARSE_SCHUR;
-    if (ordering_->GroupSize(0) > 0) solver.linear_solver_ordering = ordering_;
-    else solver.linear_solver_type = ceres::DENSE_QR;
-    solver.max_num_iterations = options.max_iterations;
-    solver.num_threads = options.threads;
-    solver.function_tolerance = 1e-10;
-    solver.parameter_tolerance = 1e-10;
-    ceres::Solver::Summary summary;
-    ceres::Solve(solver, problem_.get(), &summary);
-    CopyBack();
+  double best = HUGE_VAL;
+  SmootherProblem::Snapshot best_state = problem->Save();
+  search.solve_at = [&](const std::array<double, 2>& log_width) {
+    problem->Restore(best_state);
+    problem->HoldLogWidths(log_width);
+    const ceres::Solver::Summary summary = problem->Solve(options);
+    if (summary.IsSolutionUsable() && summary.final_cost < best)
+      best = summary.final_cost, best_state = problem->Save();
     return summary;
-  }
-
-  // The global blocks as the covariance lays them out: law1, law2, delta1,
-  // delta2, log w1, log w2, bias1, bias2, in physical units.
-  std::vector<detail::GlobalBlock> Layout() {
-    std::vector<detail::GlobalBlock> out;
-    Eigen::Index at = 0;
-    auto add = [&](double* values, std::vector<double> scale, bool constant, int fixed_coordinate) {
-      detail::GlobalBlock b{values, at, std::move(scale), {}};
-      for (int i = 0; i < int(b.scale.size()) && !constant; ++i)
-        if (i != fixed_coordinate) b.free.push_back(i);
-      at += Eigen::Index(b.scale.size());
-      out.push_back(std::move(b));
-    };
-    for (int j = 0; j < 2; ++j)
-      add(law_[j], {law_scale_[j].begin(), law_scale_[j].end()}, false, beam_ ? 3 : -1);
-    for (int j = 0; j < 2; ++j) add(delta_[j], {1.0}, held_.backlash[j], -1);
-    for (int j = 0; j < 2; ++j) add(width_[j], {1.0}, !estimate_width_, -1);
-    for (int j = 0; j < 2; ++j) {
-      const int nb = int(state_->bias[j].size());
-      add(bias_[j], std::vector<double>(std::size_t(nb), 1.0), held_.bias[j],
-          bias_depth_term_ ? -1 : nb - 1);
-    }
-    return out;
-  }
-
-  // The clustered sandwich of the globals (joint_smoother_sandwich.h), the
-  // tips and external torques profiled; held blocks get zero rows.
-  Eigen::MatrixXd Sandwich(const std::vector<int>& cluster_of_sample) {
-    std::vector<double*> nuisance;
-    for (auto& [segment, tip] : tip_) nuisance.push_back(tip), nuisance.push_back(tip + 1);
-    for (auto& tau : state_->tau_ext_nm)
-      for (double& t : tau)
-        if (problem_->HasParameterBlock(&t)) nuisance.push_back(&t);
-    const auto layout = Layout();
-    const Eigen::Index size = layout.back().offset + Eigen::Index(layout.back().scale.size());
-    return detail::SmootherSandwich(problem_.get(), layout, nuisance, residuals_, sample_of_residual_,
-                                    cluster_of_sample, size);
-  }
-
-  // Covariance of the Layout() blocks in physical units (white row noise);
-  // false when Ceres finds the problem singular.
-  bool GlobalCovariance(const JointSmootherOptions& options, double variance_factor,
-                        Eigen::MatrixXd* out) {
-    std::vector<const double*> blocks;
-    std::vector<double> scale;
-    for (const auto& b : Layout()) {
-      blocks.push_back(b.values);
-      scale.insert(scale.end(), b.scale.begin(), b.scale.end());
-    }
-    // The held parameters are free here: their columns give the sensitivity of
-    // the others to them (consider_covariance.h).
-    for (int j = 0; j < 2; ++j) {
-      if (held_.backlash[j]) problem_->SetParameterBlockVariable(delta_[j]);
-      if (held_.bias[j]) problem_->SetParameterBlockVariable(bias_[j]);
-    }
-    const long n = long(scale.size());
-    Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> c(n, n);
-    ceres::Covariance::Options covariance_options;
-    covariance_options.num_threads = options.threads;
-    ceres::Covariance covariance(covariance_options);
-    std::vector<std::pair<const double*, const double*>> pairs;
-    for (std::size_t a = 0; a < blocks.size(); ++a)
-      for (std::size_t b = a; b < blocks.size(); ++b) pairs.push_back({blocks[a], blocks[b]});
-    if (!covariance.Compute(pairs, problem_.get()) ||
-        !covariance.GetCovarianceMatrix(blocks, c.data())) {
-      return false;
-    }
-    const Eigen::Map<const Eigen::VectorXd> s(scale.data(), n);
-    *out = variance_factor * (s.asDiagonal() * Eigen::MatrixXd(c) * s.asDiagonal());
-    return true;
-  }
-
- private:
-  template <typename... Blocks>
-  void Add(int sample, ceres::CostFunction* cost, ceres::LossFunction* loss, Blocks... blocks) {
-    residuals_.push_back(problem_->AddResidualBlock(cost, loss, blocks...));
-    sample_of_residual_.push_back(sample);
-  }
-
-  void Global(double* block, int n, const double* mean, const double* sd) {
-    problem_->AddParameterBlock(block, n);
-    Add(-1, Prior(mean, sd, n), nullptr, block);
-    ordering_->AddElementToGroup(block, 1);
-  }
-
-  // Ceres orders the blocks of one elimination group by address (a
-  // ParameterBlockOrdering holds std::set<double*>), and the order changes the
-  // solution's last digits: blocks in separate heap allocations would follow
-  // the heap's layout, which differs from one process to the next (a Python
-  // process, another malloc). Every block outside the eliminated group lives
-  // in globals_, in a fixed order: the law (in prior-sd units), δ, log w and
-  // the bias of each joint, then the tips by segment.
-  void LayOut(const SmootherState& state, int bias_size) {
-    globals_.assign(2 * (4 + 1 + 1 + std::size_t(bias_size)) + 2 * state.tip_rad.size(), 0.0);
-    double* next = globals_.data();
-    auto take = [&next](std::size_t n) { double* block = next; next += n; return block; };
-    for (int j = 0; j < 2; ++j) {
-      law_[j] = take(4);
-      delta_[j] = take(1), *delta_[j] = state.delta_rad[j];
-      width_[j] = take(1), *width_[j] = state.log_width[j];
-      bias_[j] = take(std::size_t(bias_size));
-      std::copy(state.bias[j].begin(), state.bias[j].end(), bias_[j]);
-    }
-    for (const auto& [segment, tip] : state.tip_rad) {
-      tip_[segment] = take(2);
-      std::copy(tip.begin(), tip.end(), tip_[segment]);
-    }
-  }
-
-  void CopyBack() {
-    for (int j = 0; j < 2; ++j) {
-      for (int i = 0; i < 4; ++i) state_->law[j][i] = law_[j][i] * law_scale_[j][i];
-      state_->delta_rad[j] = *delta_[j];
-      state_->log_width[j] = *width_[j];
-      std::copy(bias_[j], bias_[j] + state_->bias[j].size(), state_->bias[j].begin());
-    }
-    for (auto& [segment, tip] : state_->tip_rad) std::copy(tip_[segment], tip_[segment] + 2, tip.begin());
-  }
-
-  SmootherState* state_;
-  detail::UndeterminedParameters held_;
-  std::vector<double> globals_;
-  double *law_[2], *delta_[2], *width_[2], *bias_[2];
-  std::map<int, double*> tip_;
-  std::array<std::array<double, 4>, 2> law_scale_{};
-  ceres::HuberLoss huber_;
-  bool beam_, bias_depth_term_, estimate_width_;
-  std::vector<ceres::ResidualBlockId> residuals_;
-  std::vector<int> sample_of_residual_;  // −1: a prior
-  std::unique_ptr<ceres::Problem> problem_;
-  std::shared_ptr<ceres::ParameterBlockOrdering> ordering_;
-};
+  };
+  search.slope = [&] { return problem->WidthSlope(); };
+  const detail::WidthProfile profile = detail::ProfileWidths(search);
+  problem->Restore(best_state);
+  problem->HoldLogWidths(profile.log_width);
+  *above_floor = {!profile.at_floor[0], !profile.at_floor[1]};
+  return detail::Describe(profile, search);
+}
 
 }  // namespace
 
@@ -287,7 +83,7 @@ Noise RescaledNoise(const IdentificationData& data, const SmootherState& state,
 void FillResult(const IdentificationData& data, const models::ModelParameters& prior,
                 const SmootherPrior& smoother_prior, const JointSmootherOptions& options,
                 SmootherState* state, const Eigen::MatrixXd* covariance,
-                IdentificationResult* result);
+                const std::array<bool, 2>& width_fitted, IdentificationResult* result);
 }  // namespace detail
 
 IdentificationResult RunJointSmoother(const IdentificationData& data,
@@ -324,22 +120,28 @@ IdentificationResult RunJointSmoother(const IdentificationData& data,
     }
 
   }
-  // The dead-zone floor, fixed before the first pass so that the second starts
-  // where the first ended (a new w would move every latent in the clearance).
-  std::array<double, 2> width_floor_nm;
+  // The take-up of the clearance cannot be resolved below the effort noise of
+  // one sample: w's floor, fixed before the first pass, which holds w there.
+  std::array<double, 2> log_floor;
   for (int j = 0; j < 2; ++j) {
-    width_floor_nm[j] =
-        options.deadzone_resolution_sd * noise.effort_fixed_nm[j] / std::sqrt(TypicalRows(data));
+    log_floor[j] = std::log(options.deadzone_resolution_sd * noise.effort_fixed_nm[j] /
+                            std::sqrt(TypicalRows(data)));
   }
+  state.log_width = log_floor;
   IdentificationResult result;
   result.method = "smoother";
   result.depth_estimates = paper.depth_estimates;
   // Two passes: the second weighs the samples by the noise the first found.
+  std::string width_line;
+  std::array<bool, 2> width_fitted{false, false};
   for (int pass = 0; pass < 2; ++pass) {
-    SmootherProblem problem(data, smoother_prior, options, noise, width_floor_nm, held, &state);
+    SmootherProblem problem(data, smoother_prior, options, noise, held, &state);
+    if (pass == 1 && options.estimate_deadzone_width) {
+      width_line = ProfileTakeUp(data, state, options, log_floor, held, &problem, &width_fitted);
+    }
     const ceres::Solver::Summary summary = problem.Solve(options);
     result.report += "pass " + std::to_string(pass + 1) + ": " + summary.BriefReport() +
-                     " (" + std::to_string(summary.total_time_in_seconds) + " s)\n";
+                     " (" + std::to_string(summary.total_time_in_seconds) + " s)\n" + width_line;
     if (!summary.IsSolutionUsable()) {
       throw std::runtime_error("the joint smoother failed: " + summary.message);
     }
@@ -375,7 +177,7 @@ IdentificationResult RunJointSmoother(const IdentificationData& data,
       considered.conditional = fitted;
     }
     detail::FillResult(data, prior, smoother_prior, options, &state, ok ? &covariance : nullptr,
-                       &result);
+                       width_fitted, &result);
     if (ok && !held_indices.empty()) {
       for (const auto& w : detail::HeldParameterWarnings(result.parameters, considered.conditional, held))
         result.warnings.push_back(w);

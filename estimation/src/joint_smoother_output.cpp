@@ -93,7 +93,7 @@ SmootherNoise RescaledNoise(const IdentificationData& data, const SmootherState&
 void FillResult(const IdentificationData& data, const models::ModelParameters& prior,
                 const SmootherPrior& smoother_prior, const JointSmootherOptions& options,
                 SmootherState* state, const Eigen::MatrixXd* computed,
-                IdentificationResult* result) {
+                const std::array<bool, 2>& width_fitted, IdentificationResult* result) {
   const int nb = 2 * options.bias_harmonics + 2;
   std::vector<std::string> names;
   for (int j = 0; j < 2; ++j) for (const auto& n : LawNames(j, options.law)) names.push_back(n);
@@ -163,10 +163,12 @@ void FillResult(const IdentificationData& data, const models::ModelParameters& p
   const auto structural = IdentifiabilityWarnings(
       data, p, options.paper, options.law == models::ComplianceForm::kBeamSeries ? 3 : 4);
   result->warnings.insert(result->warnings.begin(), structural.begin(), structural.end());
-  // What the structure does not catch: a parameter the data hardly move from its prior.
+  // What the structure does not catch: a parameter the data hardly move from
+  // its prior. A width that ended at its floor is a finding (the take-up is
+  // below the resolution, a hard wall), not a failure: no warning.
   for (int j = 0; j < 2; ++j) {
     const double width_sd = std::sqrt(covariance(10 + j, 10 + j));  // in log w
-    if (options.estimate_deadzone_width && width_sd > options.identified_fraction * smoother_prior.log_width_sd[j]) {
+    if (width_fitted[j] && width_sd > options.identified_fraction * smoother_prior.log_width_sd[j]) {
       result->warnings.push_back(Format(
           "joint %.0f: the dead-zone width is hardly informed (sd of log w is %.0f%% of its "
           "prior's): few samples lie where the shaft crosses the clearance",

@@ -4,18 +4,24 @@
 // and the joint stepped (0.25 mm at the tip) until the external torque passes
 // 1 N·m, back to −1 N·m and back past the start, one averaged row per hold.
 // The truth composes the models/ effects with a hard clearance of ±delta: the
-// shaft is free inside it (no load) and rests on the wall beyond it.
+// shaft is free inside it (no load) and rests on the wall beyond it; or, with
+// take_up_nm > 0, the clearance taken up as the load builds, pliant's dead zone
+// delta·S(tau / take_up_nm) (models/smooth.h).
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <cstdint>
 #include <random>
 #include <vector>
+
+#include <boost/math/tools/roots.hpp>
 
 #include "paper_parameters.h"
 #include "pliant/io/log.h"
 #include "pliant/io/log_writer.h"
 #include "pliant/models/parameters.h"
+#include "pliant/models/smooth.h"
 
 namespace pliant::testing {
 
@@ -28,6 +34,7 @@ struct CalibrationLogSpec {
   bool reversals = true;                     ///< false: push one way only
   bool bias_sweep = true;
   bool clamp = true;                         ///< false: no tip_fixed rows at all
+  double take_up_nm = 0.0;                   ///< > 0: the dead zone's width w (else a hard wall)
   unsigned seed = 1;
 };
 
@@ -65,8 +72,19 @@ inline io::Log MakeCalibrationLog(const CalibrationLogSpec& spec) {
       const auto& joint = spec.truth.joints[j];
       const double k = models::ComplianceAt(joint, depth), delta = joint.backlash_rad;
       // Load of a hard clearance: zero inside ±delta, elastic beyond it.
+      // With a take-up, q = delta·S(tau / w) + k·tau, increasing in tau, and
+      // tau lies within ±delta / k of q / k.
       auto load = [&](double q) {
-        return q > delta ? (q - delta) / k : (q < -delta ? (q + delta) / k : 0.0);
+        if (spec.take_up_nm <= 0.0)
+          return q > delta ? (q - delta) / k : (q < -delta ? (q + delta) / k : 0.0);
+        const auto angle = [&](double tau) {
+          return delta * models::SmoothSaturation(tau / spec.take_up_nm) + k * tau - q;
+        };
+        std::uintmax_t iterations = 200;
+        const auto root = boost::math::tools::toms748_solve(
+            angle, (q - delta) / k - 1e-9, (q + delta) / k + 1e-9,
+            boost::math::tools::eps_tolerance<double>(50), iterations);
+        return 0.5 * (root.first + root.second);
       };
       const double step = 0.25e-3 / depth;
       auto row = [&](double q) {

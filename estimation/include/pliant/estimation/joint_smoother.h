@@ -9,7 +9,8 @@
 // the latent tip angle of tip_fixed segment s, and tau_ext_ij a latent
 // external torque (zero, not estimated, while the tip is free). Unknowns: the
 // law's coefficients, delta_j, log w_j, the bias coefficients (global, with
-// Gaussian priors) and the latents (eliminated by the Schur complement).
+// Gaussian priors) and the latents (eliminated by the Schur complement);
+// log w_j is held in each solve and profiled outside it.
 // Residuals pass through a Huber loss, so that a few bad samples do not drag
 // the fit. The covariance of the global parameters comes from
 // ceres::Covariance, scaled by the variance factor of the fit.
@@ -47,10 +48,10 @@ struct JointSmootherOptions {
   /// and a hard contact would drive w to 0, where the smooth dead zone becomes
   /// a step that Levenberg–Marquardt crawls along (docs/identification.md).
   double deadzone_resolution_sd = 4.0;
-  /// false (default): w is held at that floor — fast and, for a hard contact,
-  /// where the estimate ends anyway; true: w is estimated above the floor
-  /// (2–5 times slower; its σ is then reported).
-  bool estimate_deadzone_width = false;
+  /// true (default): w_j is profiled above that floor, joint by joint (one
+  /// extra solve on a hard wall, ~20 on a smooth take-up), and its uncertainty
+  /// is carried into the others' σ (docs/decisions/0010-…); false: held at the floor.
+  bool estimate_deadzone_width = true;
   int max_iterations = 100;
   int threads = 1;
   /// A parameter whose posterior sd exceeds this fraction of its prior sd is
