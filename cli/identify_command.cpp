@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -148,37 +149,57 @@ void CheckEffectNames(const std::vector<std::string>& names) {
 // The named effects fitted on the held-tip rows, jointly with each joint's
 // compliance scale and clearance, into the identified parameters (the fit
 // pliant diagnose --add makes: pliant/estimation/effect_fit.h).
-void FitEffects(const IdentifyOptions& options, const std::vector<io::Log>& logs,
-                estimation::IdentificationResult* result, std::string* summary) {
-  if (options.effects.empty()) return;
+std::optional<estimation::LogEffectFit> FitEffects(const IdentifyOptions& options,
+                                                   const std::vector<io::Log>& logs,
+                                                   estimation::IdentificationResult* result) {
+  if (options.effects.empty()) return std::nullopt;
   io::Progress progress("pliant identify: fitting " + JoinedPaths(options.effects));
   std::vector<estimation::NamedLog> named;
   for (std::size_t i = 0; i < logs.size(); ++i) named.push_back({&logs[i], options.logs[i]});
-  const auto fit =
-      estimation::FitEffectsOnLogs(named, result->parameters, options.effects, {});
+  auto fit = estimation::FitEffectsOnLogs(named, result->parameters, options.effects, {});
   result->parameters = estimation::WithFittedEffects(result->parameters, fit.fitted,
                                                      "pliant identify on " + JoinedPaths(fit.logs));
+  return fit;
+}
+
+std::string EffectsText(const estimation::LogEffectFit& fit) {
   char line[320];
   std::snprintf(line, sizeof line,
                 "  effects fitted on the held tip of %s (%zu samples, %d segments), with each "
                 "joint's compliance scale and clearance:\n",
                 JoinedPaths(fit.logs).c_str(), fit.samples, fit.segments);
-  *summary += line;
+  std::string text = line;
   for (const auto& e : fit.fitted.effects) {
-    *summary += "    " + e.name + ":";
+    text += "    " + e.name + ":";
     for (std::size_t k = 0; k < e.parameters.size(); ++k) {
       std::snprintf(line, sizeof line, " %s = %.4g ± %.2g", e.parameter_names[k].c_str(),
                     e.parameters[k], k < e.parameter_sd.size() ? e.parameter_sd[k] : 0.0);
-      *summary += line;
+      text += line;
     }
-    *summary += "\n";
+    text += "\n";
   }
   std::snprintf(line, sizeof line,
                 "    held-out RMS error at the tip: %.3f mm as identified, %.3f mm with K and δ "
                 "refitted, %.3f mm with the effects\n",
                 fit.rms_given_mm, fit.rms_refit_mm, fit.rms_with_effects_mm);
-  *summary += line;
-  for (const auto& note : fit.notes) *summary += "    note: " + note + "\n";
+  text += line;
+  for (const auto& note : fit.notes) text += "    note: " + note + "\n";
+  return text;
+}
+
+nlohmann::json EffectsJson(const estimation::LogEffectFit& fit) {
+  nlohmann::json effects = nlohmann::json::array();
+  for (const auto& e : fit.fitted.effects) {
+    nlohmann::json parameters = nlohmann::json::array();
+    for (std::size_t k = 0; k < e.parameters.size(); ++k)
+      parameters.push_back({{"name", e.parameter_names[k]}, {"value", e.parameters[k]},
+                            {"sd", k < e.parameter_sd.size() ? e.parameter_sd[k] : 0.0}});
+    effects.push_back({{"name", e.name}, {"parameters", parameters}});
+  }
+  return {{"logs", fit.logs}, {"samples", fit.samples}, {"segments", fit.segments},
+          {"effects", effects}, {"heldout_rms_given_mm", fit.rms_given_mm},
+          {"heldout_rms_refit_mm", fit.rms_refit_mm},
+          {"heldout_rms_with_effects_mm", fit.rms_with_effects_mm}, {"notes", fit.notes}};
 }
 
 // The fit, with its progress (elapsed time: Ceres gives no share done).
@@ -236,19 +257,19 @@ void RunIdentify(const IdentifyOptions& options) {
   result.parameters.description = "identified by pliant identify (" + result.method + ", " +
                                    options.law + ") from " + std::to_string(options.logs.size()) +
                                    " log(s)";
-  std::string effects_summary;
-  FitEffects(options, logs, &result, &effects_summary);
+  const auto effects = FitEffects(options, logs, &result);
   io::WriteParameters(options.output_path, result.parameters);
   std::FILE* out = SummaryStream(options.output_path);
   const auto laws = estimation::CompareLaws(result);
   if (options.json) {
     auto json = estimation::IdentificationJson(result, data, laws);
     json["output"] = options.output_path;
+    if (effects) json["effects_fit"] = EffectsJson(*effects);
     std::fprintf(out, "%s\n", json.dump(2).c_str());
   } else {
     std::fprintf(out, "pliant identify: %s%s",
                  estimation::IdentificationTable(result, data, laws).c_str(),
-                 effects_summary.c_str());
+                 effects ? EffectsText(*effects).c_str() : "");
     std::fprintf(out, "  wrote %s\n", options.output_path.c_str());
   }
   for (const auto& w : result.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());

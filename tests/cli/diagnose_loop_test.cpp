@@ -21,10 +21,6 @@ const std::string kSource = PLIANT_SOURCE_DIR;
 const std::string kParams = kSource + "/data/paper.json";
 const std::string kHiddenLog = kSource + "/data/divot_hidden_effect.csv";
 
-CommandResult RunIn(const fs::path& dir, const std::string& command) {
-  return RunCommand("cd '" + dir.string() + "' && " + command, dir);
-}
-
 TEST(DiagnoseLoop, TheWrittenParametersCorrectALogTheDiagnosisNeverSaw) {
   const auto dir = FreshDirectory("diagnose_loop");
   // The shipped log hides deflection_coupling k12 0.006, k21 0.004 (data/README.md).

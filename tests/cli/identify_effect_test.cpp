@@ -25,10 +25,6 @@ const std::string kSweep = kSource + "/data/bias_sweep.csv";
 // Hides deflection_coupling k12 = 0.006, k21 = 0.004 rad/(N·m) (data/README.md).
 const std::string kHiddenLog = kSource + "/data/divot_hidden_effect.csv";
 
-CommandResult RunIn(const fs::path& dir, const std::string& command) {
-  return RunCommand("cd '" + dir.string() + "' && " + command, dir);
-}
-
 const models::EffectParameters* Find(const models::ModelParameters& p, const std::string& name) {
   for (const auto& e : p.effects) {
     if (e.name == name) return &e;
@@ -117,6 +113,10 @@ TEST(IdentifyEffect, AnUnknownNameExitsTwoAndWritesNothing) {
   // The base model's own effects are not extra effects.
   const auto base = RunIn(dir, kCli + " identify " + kSweep + " --effect compliance -o x.json");
   EXPECT_EQ(base.exit_code, 2) << base.err;
+  const auto twice = RunIn(dir, kCli + " identify " + kSweep +
+                                    " --effect joint_friction --effect joint_friction -o x.json");
+  EXPECT_EQ(twice.exit_code, 2) << twice.err;
+  EXPECT_NE(twice.err.find("--effect joint_friction: is given twice"), std::string::npos) << twice.err;
   EXPECT_FALSE(fs::exists(dir / "x.json"));
 }
 
