@@ -1,14 +1,18 @@
 // pliant identify: the compliance model from logs, by the paper's procedure or
 // the joint smoother, written as a parameters file with its covariance.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "commands.h"
 #include "identify_figures.h"
+#include "pliant/estimation/effect_catalogue.h"
+#include "pliant/estimation/effect_fit.h"
 #include "pliant/estimation/identification_quasi_static.h"
 #include "pliant/estimation/identification_report.h"
 #include "pliant/estimation/joint_smoother.h"
@@ -35,6 +39,7 @@ struct IdentifyOptions {
   int harmonics = 2;
   bool json = false;
   bool skip_bad_rows = false;
+  std::vector<std::string> effects;  ///< --effect: catalogue effects fitted after the base
 };
 
 models::ComplianceForm LawOf(const std::string& name) {
@@ -124,6 +129,79 @@ void RequireBiasSweep(const estimation::IdentificationData& data,
   }
 }
 
+// Checked before any log is read, so a typo costs nothing.
+void CheckEffectNames(const std::vector<std::string>& names) {
+  const auto candidates = estimation::CandidateEffectNames();
+  std::string known;
+  for (const auto& k : candidates) known += (known.empty() ? "" : ", ") + k;
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    const std::string option = "pliant identify: --effect " + names[i];
+    if (!estimation::EffectCatalogue::Global().Contains(names[i]))
+      throw io::InputError(option, 0, 0, "not in the catalogue", "one of: " + known);
+    if (std::find(candidates.begin(), candidates.end(), names[i]) == candidates.end())
+      throw io::InputError(option, 0, 0, "is part of the model identify always fits",
+                           "name an effect beyond it, one of: " + known);
+    if (std::find(names.begin(), names.begin() + long(i), names[i]) != names.begin() + long(i))
+      throw io::InputError(option, 0, 0, "is given twice", "give each effect once: it is fitted once");
+  }
+}
+
+// The named effects fitted on the held-tip rows, jointly with each joint's
+// compliance scale and clearance, into the identified parameters (the fit
+// pliant diagnose --add makes: pliant/estimation/effect_fit.h).
+std::optional<estimation::LogEffectFit> FitEffects(const IdentifyOptions& options,
+                                                   const std::vector<io::Log>& logs,
+                                                   estimation::IdentificationResult* result) {
+  if (options.effects.empty()) return std::nullopt;
+  io::Progress progress("pliant identify: fitting " + JoinedPaths(options.effects));
+  std::vector<estimation::NamedLog> named;
+  for (std::size_t i = 0; i < logs.size(); ++i) named.push_back({&logs[i], options.logs[i]});
+  auto fit = estimation::FitEffectsOnLogs(named, result->parameters, options.effects, {});
+  result->parameters = estimation::WithFittedEffects(result->parameters, fit.fitted,
+                                                     "pliant identify on " + JoinedPaths(fit.logs));
+  return fit;
+}
+
+std::string EffectsText(const estimation::LogEffectFit& fit) {
+  char line[320];
+  std::snprintf(line, sizeof line,
+                "  effects fitted on the held tip of %s (%zu samples, %d segments), with each "
+                "joint's compliance scale and clearance:\n",
+                JoinedPaths(fit.logs).c_str(), fit.samples, fit.segments);
+  std::string text = line;
+  for (const auto& e : fit.fitted.effects) {
+    text += "    " + e.name + ":";
+    for (std::size_t k = 0; k < e.parameters.size(); ++k) {
+      std::snprintf(line, sizeof line, " %s = %.4g ± %.2g", e.parameter_names[k].c_str(),
+                    e.parameters[k], k < e.parameter_sd.size() ? e.parameter_sd[k] : 0.0);
+      text += line;
+    }
+    text += "\n";
+  }
+  std::snprintf(line, sizeof line,
+                "    held-out RMS error at the tip: %.3f mm as identified, %.3f mm with K and δ "
+                "refitted, %.3f mm with the effects\n",
+                fit.rms_given_mm, fit.rms_refit_mm, fit.rms_with_effects_mm);
+  text += line;
+  for (const auto& note : fit.notes) text += "    note: " + note + "\n";
+  return text;
+}
+
+nlohmann::json EffectsJson(const estimation::LogEffectFit& fit) {
+  nlohmann::json effects = nlohmann::json::array();
+  for (const auto& e : fit.fitted.effects) {
+    nlohmann::json parameters = nlohmann::json::array();
+    for (std::size_t k = 0; k < e.parameters.size(); ++k)
+      parameters.push_back({{"name", e.parameter_names[k]}, {"value", e.parameters[k]},
+                            {"sd", k < e.parameter_sd.size() ? e.parameter_sd[k] : 0.0}});
+    effects.push_back({{"name", e.name}, {"parameters", parameters}});
+  }
+  return {{"logs", fit.logs}, {"samples", fit.samples}, {"segments", fit.segments},
+          {"effects", effects}, {"heldout_rms_given_mm", fit.rms_given_mm},
+          {"heldout_rms_refit_mm", fit.rms_refit_mm},
+          {"heldout_rms_with_effects_mm", fit.rms_with_effects_mm}, {"notes", fit.notes}};
+}
+
 // The fit, with its progress (elapsed time: Ceres gives no share done).
 estimation::IdentificationResult Fit(const IdentifyOptions& options, const std::string& method,
                                      const estimation::IdentificationData& data,
@@ -146,6 +224,7 @@ estimation::IdentificationResult Fit(const IdentifyOptions& options, const std::
 }
 
 void RunIdentify(const IdentifyOptions& options) {
+  CheckEffectNames(options.effects);
   io::CheckOutputFile(options.output_path, "-o");
   io::CheckOutputFile(options.figure_path, "--figure");
   const models::ModelParameters prior =
@@ -154,12 +233,14 @@ void RunIdentify(const IdentifyOptions& options) {
     io::CheckLogPlausibilityAndWarn(path, {options.skip_bad_rows});
   }
   estimation::IdentificationData data;
+  std::vector<io::Log> logs;
   bool all_quasi_static = true, both_joints = true;
   for (const auto& path : options.logs) {
     const io::Log log = io::ReadLog(path, {options.skip_bad_rows});
     all_quasi_static = all_quasi_static && log.header.QuasiStatic();
     both_joints = both_joints && log.header.JointRecorded(1) && log.header.JointRecorded(2);
     estimation::AppendSamples(log, path, {}, &data);
+    if (!options.effects.empty()) logs.push_back(log);
   }
   // Quasi-static means (one row per pose) have no dynamics for the smoother
   // to read: they get the clamp-by-clamp fit with the held friction.
@@ -176,16 +257,19 @@ void RunIdentify(const IdentifyOptions& options) {
   result.parameters.description = "identified by pliant identify (" + result.method + ", " +
                                    options.law + ") from " + std::to_string(options.logs.size()) +
                                    " log(s)";
+  const auto effects = FitEffects(options, logs, &result);
   io::WriteParameters(options.output_path, result.parameters);
   std::FILE* out = SummaryStream(options.output_path);
   const auto laws = estimation::CompareLaws(result);
   if (options.json) {
     auto json = estimation::IdentificationJson(result, data, laws);
     json["output"] = options.output_path;
+    if (effects) json["effects_fit"] = EffectsJson(*effects);
     std::fprintf(out, "%s\n", json.dump(2).c_str());
   } else {
-    std::fprintf(out, "pliant identify: %s",
-                 estimation::IdentificationTable(result, data, laws).c_str());
+    std::fprintf(out, "pliant identify: %s%s",
+                 estimation::IdentificationTable(result, data, laws).c_str(),
+                 effects ? EffectsText(*effects).c_str() : "");
     std::fprintf(out, "  wrote %s\n", options.output_path.c_str());
   }
   for (const auto& w : result.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
@@ -224,6 +308,10 @@ Command AddIdentifyCommand(CLI::App& app) {
                   "Also draw 1/K against depth with the law and its 95 % band (.png or .svg), and beside it the data: _fig4 (free-tip effort per depth), _fig5 (a clamped loop)");
   sub->add_flag("--no-held-friction", options->no_held_friction,
                 "quasi_static: fit the paper's form only (no held_friction effect)");
+  sub->add_option("--effect", options->effects,
+                  "Catalogue effect to fit after the base model, on the held-tip rows with each "
+                  "joint's K scale and clearance, into the file's effects (repeatable; "
+                  "docs/effects.md)");
   sub->add_flag("--json", options->json, "Print the results as JSON");
   sub->add_flag("--skip-bad-rows", options->skip_bad_rows,
                 "Drop and count rows with NaN/Inf/empty required values instead of stopping");

@@ -18,11 +18,6 @@ using diagnosis::Problem;
 using diagnosis::Term;
 using Residual = std::vector<Eigen::Vector2d>;
 
-Term MakeTerm(const std::string& name) {
-  std::shared_ptr<const EffectModel> effect = EffectCatalogue::Global().Create(name);
-  return {effect, effect->DefaultParameters(), name};
-}
-
 // Standardised residual entries of the used joints, joint 1's run then joint 2's.
 struct Standardised {
   std::vector<double> value;
@@ -147,73 +142,6 @@ diagnosis::CandidateFit Evaluate(const Problem& problem, const diagnosis::BaseMo
   return {f, fitted, refit};
 }
 
-// The log channels an effect reads: the inputs of the joint state its
-// contribution has a derivative with respect to (parameters moved one prior
-// sd off their defaults, at a light and a heavy load), in the log's names.
-std::vector<std::string> ChannelsOf(const EffectModel& effect) {
-  static const char* kLogName[models::kJointStateSize] = {
-      "q1", "q2", "q3", "tau1", "tau2", "v1", "v2", "t", "dtau1/dt", "dtau2/dt",
-      "travel1", "travel2"};
-  std::vector<double> parameters;
-  for (const auto& spec : effect.Parameters()) {
-    const double moved = spec.default_value + spec.prior_sd;
-    parameters.push_back(moved <= spec.upper_bound ? moved : spec.default_value - spec.prior_sd);
-  }
-  std::vector<bool> used(models::kJointStateSize, false);
-  for (double load : {0.04, 0.7}) {
-    models::JointState<double> state;
-    state.encoder_angle_rad << 0.31, -0.27;
-    state.insertion_depth_m = 0.143;
-    state.external_torque_nm << load, -1.3 * load;
-    state.velocity_rad_s << 0.02, -0.01;
-    state.time_s = 12.5;
-    state.effort_rate_nm_s << 0.4, -0.7;
-    state.travel_since_reversal_rad << 0.003, -0.001;
-    const auto check = CheckEffectJacobians(effect, parameters, state);
-    for (int k = 0; k < models::kJointStateSize; ++k)
-      used[k] = used[k] || check.autodiff.col(Eigen::Index(parameters.size()) + k).cwiseAbs().maxCoeff() > 0.0;
-  }
-  std::vector<std::string> channels;
-  for (int k = 0; k < models::kJointStateSize; ++k) {
-    if (used[k]) channels.push_back(kLogName[k]);
-  }
-  return channels;
-}
-
-// A fitted term as a finding: its values, sd and names.
-EffectFinding FindingOf(const Term& term, const std::vector<double>& values,
-                        const std::vector<std::vector<double>>& sd, std::size_t index) {
-  EffectFinding f;
-  f.name = term.name;
-  f.description = std::string(term.effect->Info().explanation);
-  f.channels = ChannelsOf(*term.effect);
-  f.parameters = values;
-  f.parameter_sd = sd.size() > index ? sd[index] : std::vector<double>(values.size(), 0.0);
-  for (const auto& spec : term.effect->Parameters()) f.parameter_names.push_back(spec.name);
-  f.size_unit = "mm";
-  return f;
-}
-
-// The --add effects fitted jointly on every compared row, with their sd;
-// `fixed` receives them at the fitted values, `recalibration` the base's
-// compliance scale and clearance refitted with them (when the problem refits).
-std::vector<EffectFinding> FitAdded(const Problem& problem, const diagnosis::BaseModel& model,
-                                    const std::vector<Term>& added, std::vector<Term>& fixed,
-                                    std::optional<EffectFinding>* recalibration) {
-  const std::vector<bool> all(problem.groups, true);
-  const auto fit = diagnosis::FitTerms(problem, model, {}, diagnosis::WithRefit(problem, added),
-                                       all, true, 1.0);
-  const std::size_t first = problem.refit.size();
-  if (first == 1) *recalibration = FindingOf(problem.refit[0], fit.parameters[0], fit.parameter_sd, 0);
-  fixed = added;
-  std::vector<EffectFinding> out;
-  for (std::size_t t = 0; t < added.size(); ++t) {
-    fixed[t].parameters = fit.parameters[first + t];
-    out.push_back(FindingOf(added[t], fixed[t].parameters, fit.parameter_sd, first + t));
-  }
-  return out;
-}
-
 // A caution for a channel whose lag or nature can mislead a reader.
 std::string ChannelRemark(const ChannelFinding& c, int max_lag) {
   if (c.name == "t")
@@ -280,7 +208,7 @@ Diagnosis Diagnose(const io::Log& log, const std::string& log_path,
   }
   CheckEffectOptions(options, log_path);
   std::vector<Term> added;
-  for (const auto& name : options.added_effects) added.push_back(MakeTerm(name));
+  for (const auto& name : options.added_effects) added.push_back(diagnosis::MakeTerm(name));
   std::vector<std::string> names = options.candidates.empty() ? CandidateEffectNames() : options.candidates;
 
   const diagnosis::BaseModel model(parameters);
@@ -301,7 +229,10 @@ Diagnosis Diagnose(const io::Log& log, const std::string& log_path,
   Residual after = before;
   Residual heldout_baseline;
   if (!added.empty()) {
-    d.added = FitAdded(problem, model, added, fixed, &d.recalibration);
+    const auto fitted = diagnosis::FitAdded(problem, model, added, &fixed);
+    d.added = fitted.effects;
+    d.recalibration = fitted.recalibration;
+    d.added_covariance = fitted.covariance;
     d.rms_after_mm = diagnosis::TipRmsMm(
         problem, diagnosis::CrossValidated(problem, model, {}, diagnosis::WithRefit(problem, added)));
     after = diagnosis::Residuals(problem, model, fixed);
@@ -327,11 +258,11 @@ Diagnosis Diagnose(const io::Log& log, const std::string& log_path,
   for (const auto& name : names) {
     const auto& a = options.added_effects;
     if (std::find(a.begin(), a.end(), name) != a.end()) continue;  // already in the model
-    const Term candidate = MakeTerm(name);
+    const Term candidate = diagnosis::MakeTerm(name);
     if (candidate.parameters.empty()) continue;  // nothing to fit: no size, no test
     auto c =
         Evaluate(problem, model, fixed, candidate, recalibrated, heldout_baseline, baseline_rms);
-    c.finding.channels = ChannelsOf(*candidate.effect);
+    c.finding.channels = diagnosis::ChannelsOf(*candidate.effect);
     candidates.push_back(std::move(c));
   }
   std::vector<double> p;

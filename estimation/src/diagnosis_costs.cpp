@@ -7,9 +7,11 @@
 // not do without one nuisance parameter block per segment.
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include <ceres/ceres.h>
 
+#include "clustered_sandwich.h"
 #include "diagnosis_internal.h"
 
 namespace pliant::estimation::diagnosis {
@@ -169,6 +171,36 @@ class BaseRecalibration {
   const BaseModel* model_;
 };
 
+// The rows of one segment (a push, a clamp) share what the model lacks: the
+// clustered sandwich counts each segment as one draw, never below `floor`
+// (the white-noise covariance; estimation/src/clustered_sandwich.h).
+Eigen::MatrixXd ClusteredBySegment(const Problem& problem, const std::vector<std::size_t>& samples,
+                                   ceres::Problem* ceres_problem, const std::vector<double*>& blocks,
+                                   ceres::ResidualBlockId residual_block,
+                                   const Eigen::MatrixXd& floor) {
+  std::vector<ceres::ResidualBlockId> rows;
+  ceres_problem->GetResidualBlocks(&rows);
+  // The samples' block first, then the priors (model-based rows).
+  rows.erase(std::remove(rows.begin(), rows.end(), residual_block), rows.end());
+  rows.insert(rows.begin(), residual_block);
+  Eigen::SparseMatrix<double> jacobian;
+  Eigen::VectorXd residuals;
+  detail::EvaluateJacobian(ceres_problem, blocks, rows, &jacobian, &residuals);
+  std::vector<int> cluster_of_row(std::size_t(residuals.size()), -1);
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    for (int j = 0; j < 2; ++j) cluster_of_row[2 * i + std::size_t(j)] = problem.samples[samples[i]].group;
+  }
+  std::vector<Eigen::Index> wanted;
+  for (Eigen::Index k = 0; k < floor.rows(); ++k) wanted.push_back(k);
+  try {
+    const auto sandwich = detail::ClusteredSandwich(jacobian, residuals, cluster_of_row, wanted);
+    if (sandwich.clusters < 2 || !sandwich.clustered.allFinite()) return floor;
+    return detail::NotBelow(sandwich.clustered, floor);
+  } catch (const std::runtime_error&) {
+    return floor;  // a singular information matrix: the white-noise covariance stands
+  }
+}
+
 }  // namespace
 
 Term BaseRecalibrationTerm(const BaseModel& model) {
@@ -178,7 +210,7 @@ Term BaseRecalibrationTerm(const BaseModel& model) {
 
 FitResult FitTerms(const Problem& problem, const BaseModel& model, const std::vector<Term>& fixed,
                    const std::vector<Term>& fitted, const std::vector<bool>& train_group,
-                   bool covariance, double size_factor) {
+                   bool covariance, double size_factor, bool clustered) {
   std::vector<std::size_t> samples;
   for (std::size_t i = 0; i < problem.samples.size(); ++i) {
     if (train_group[problem.samples[i].group]) samples.push_back(i);
@@ -193,8 +225,8 @@ FitResult FitTerms(const Problem& problem, const BaseModel& model, const std::ve
   ceres::Problem ceres_problem(problem_options);
   std::vector<double*> blocks;
   for (auto& values : result.parameters) blocks.push_back(values.data());
-  ceres_problem.AddResidualBlock(new ResidualCost(problem, model, terms, fixed.size(), samples),
-                                 nullptr, blocks);
+  const ceres::ResidualBlockId residual_block = ceres_problem.AddResidualBlock(
+      new ResidualCost(problem, model, terms, fixed.size(), samples), nullptr, blocks);
   for (std::size_t t = 0; t < fitted.size(); ++t) {
     const auto specs = fitted[t].effect->Parameters();
     ceres_problem.AddResidualBlock(new PriorCost(specs), nullptr, blocks[t]);
@@ -227,6 +259,8 @@ FitResult FitTerms(const Problem& problem, const BaseModel& model, const std::ve
       const double n = double(2 * samples.size());
       const double dispersion = std::max(1.0, 2.0 * summary.final_cost / std::max(1.0, n - total));
       result.covariance = c * dispersion / size_factor;
+      if (clustered) result.covariance = ClusteredBySegment(problem, samples, &ceres_problem, blocks,
+                                                            residual_block, result.covariance);
       result.covariance_ok = true;
     }
   }

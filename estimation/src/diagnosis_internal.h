@@ -16,6 +16,7 @@
 
 #include "pliant/estimation/diagnosis.h"
 #include "pliant/estimation/effect_catalogue.h"
+#include "pliant/estimation/effect_fit.h"
 #include "pliant/io/log.h"
 #include "pliant/models/effects/backlash.h"
 #include "pliant/models/effects/compliance.h"
@@ -177,10 +178,12 @@ struct FitResult {
 /// Least squares of the standardised residual over the samples of groups
 /// where `train_group`, with `fixed` terms in the model and `fitted` terms'
 /// parameters free (bounds and Gaussian priors of their ParameterSpecs).
-/// Covariance (when `covariance`) is scaled by 1/effective-size factor.
+/// Covariance (when `covariance`) is scaled by 1/effective-size factor;
+/// `clustered`: a sandwich with each CV group (segment) as one draw, never
+/// below the white-noise covariance (the rows of one push are correlated).
 FitResult FitTerms(const Problem& problem, const BaseModel& model, const std::vector<Term>& fixed,
                    const std::vector<Term>& fitted, const std::vector<bool>& train_group,
-                   bool covariance, double size_factor);
+                   bool covariance, double size_factor, bool clustered = false);
 
 /// The base model's compliance share and clearance as a term to refit with
 /// each candidate (DiagnoseOptions::recalibrate_base); `model` must outlive it.
@@ -192,6 +195,17 @@ Term BaseRecalibrationTerm(const BaseModel& model);
 std::array<double, 2> ContributionSizeMm(const Problem& problem, const BaseModel& model,
                                          const std::vector<Term>& fixed, const Term& term,
                                          const Eigen::MatrixXd& covariance);
+
+// --- the effects fitted into the model (effect_fit.cpp) ------------------------
+/// A catalogue effect at its default parameters.
+Term MakeTerm(const std::string& name);
+/// The log channels an effect reads, in the log's names.
+std::vector<std::string> ChannelsOf(const EffectModel& effect);
+/// `added` fitted jointly (with problem.refit) on every compared row, their
+/// σ from a clustered sandwich over the segments; `fixed` receives them at
+/// the fitted values.
+FittedEffects FitAdded(const Problem& problem, const BaseModel& model,
+                       const std::vector<Term>& added, std::vector<Term>* fixed);
 
 // --- selection (diagnosis_selection.cpp) ------------------------------------------
 /// Held-out residual: each fold's samples under parameters fitted on the

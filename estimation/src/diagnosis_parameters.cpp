@@ -1,21 +1,18 @@
-// pliant diagnose --write-params: the parameters with what the diagnosis
-// fitted, for every consumer that reads a parameters file (correct, the
-// filter, the smoother, the next diagnosis).
+// The parameters with fitted catalogue effects (pliant diagnose --write-params,
+// pliant identify --effect), for every consumer that reads a parameters file
+// (correct, the filter, the smoother, the next diagnosis).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
 
 #include "pliant/estimation/diagnosis.h"
+#include "pliant/estimation/effect_fit.h"
 
 namespace pliant::estimation {
 namespace {
 
-// Factor by which a law's stored coefficients change when K is scaled by
-// `scale`: 1/K's cubic divides, the direct forms multiply.
-double CoefficientFactor(models::ComplianceForm form, double scale) {
-  return form == models::ComplianceForm::kInverseCubic ? 1.0 / scale : scale;
-}
+constexpr Eigen::Index kRecalibrationSize = 4;  // s1, s2, d1, d2
 
 std::string Formatted(const char* format, double a, double b) {
   char text[160];
@@ -27,25 +24,40 @@ void Append(std::string* text, const std::string& more) {
   *text += (text->empty() ? "" : "; ") + more;
 }
 
-// The law's coefficients' rows and columns scale with them (a linear map);
-// the clearance's variance grows by the refit's. The beam series' cannula
-// length is geometry and does not scale.
-void ScaleCovariance(models::ModelParameters* p, int joint, double factor, double clearance_var) {
-  if (!p->covariance) return;
-  auto& c = *p->covariance;
-  const std::string law = "joint" + std::to_string(joint + 1) + ".compliance.";
-  const std::string delta = "joint" + std::to_string(joint + 1) + ".backlash_rad";
-  for (std::size_t i = 0; i < c.names.size(); ++i) {
-    const std::string& name = c.names[i];
-    if (name.rfind(law, 0) == 0 && name != law + "cannula_length_m") {
-      c.matrix.row(Eigen::Index(i)) *= factor;
-      c.matrix.col(Eigen::Index(i)) *= factor;
+// Index of a law coefficient's field ("compliance.c3", …) in the stored
+// coefficients, −1 for anything else (the beam series' cannula length is
+// geometry and does not scale).
+int LawCoefficient(const std::string& field) {
+  static const char* kNames[2][4] = {
+      {"compliance.c3", "compliance.c2", "compliance.c1", "compliance.c0"},
+      {"compliance.joint_compliance_rad_per_nm", "compliance.structure_compliance_rad_per_n",
+       "compliance.shaft_flexibility_per_nm2", ""}};
+  for (const auto& form : kNames) {
+    for (int i = 0; i < 4; ++i) {
+      if (field == form[i]) return i;
     }
-    if (name == delta) c.matrix(Eigen::Index(i), Eigen::Index(i)) += clearance_var;
   }
+  return -1;
 }
 
-void ApplyRecalibration(const EffectFinding& r, const std::string& source,
+// Drops the covariance's rows and columns of an effect about to be refitted.
+void DropEffect(models::ParameterCovariance* c, const std::string& effect) {
+  std::vector<Eigen::Index> keep;
+  for (std::size_t i = 0; i < c->names.size(); ++i) {
+    if (c->names[i].rfind(effect + ".", 0) != 0) keep.push_back(Eigen::Index(i));
+  }
+  models::ParameterCovariance kept;
+  kept.matrix.resize(Eigen::Index(keep.size()), Eigen::Index(keep.size()));
+  for (std::size_t a = 0; a < keep.size(); ++a) {
+    kept.names.push_back(c->names[std::size_t(keep[a])]);
+    for (std::size_t b = 0; b < keep.size(); ++b)
+      kept.matrix(Eigen::Index(a), Eigen::Index(b)) = c->matrix(keep[a], keep[b]);
+  }
+  *c = std::move(kept);
+}
+
+// K → (1 + s_j)·K and δ → δ + d_j in the values and their sources.
+void ApplyRecalibration(const EffectFinding& r, const std::string& provenance,
                         models::ModelParameters* p) {
   for (int j = 0; j < 2; ++j) {
     auto& joint = p->joints[std::size_t(j)];
@@ -55,23 +67,64 @@ void ApplyRecalibration(const EffectFinding& r, const std::string& source,
     models::ScaleCompliance(joint.compliance, scale);
     // A clearance cannot be negative: what a narrower fit asks beyond 0 is not physical.
     joint.backlash_rad = std::max(0.0, joint.backlash_rad + widening);
-    ScaleCovariance(p, j, CoefficientFactor(joint.compliance.form, scale), widening_sd * widening_sd);
-    Append(&joint.sources["compliance"],
-           Formatted("scaled by %.4f by pliant diagnose", scale, 0.0) + " on " + source);
+    Append(&joint.sources["compliance"], Formatted("scaled by %.4f", scale, 0.0) + " by " + provenance);
     Append(&joint.sources["backlash_rad"],
-           Formatted("widened by %+.6f ± %.6f rad by pliant diagnose", widening, widening_sd) +
-               " on " + source);
+           Formatted("widened by %+.6f ± %.6f rad", widening, widening_sd) + " by " + provenance);
+  }
+}
+
+// The file's covariance after the fit, to first order: the law's coefficients
+// c' = c·(1 + s)^∓1 (1/K's cubic divides, the direct forms multiply) and
+// δ' = δ + d move with the refit, and the effects' parameters join the list.
+// With G = ∂(file's parameters)/∂(fitted parameters) and D the scaling,
+// C' = D C D + G Σ Gᵀ over the old names followed by the effects'.
+void ExtendCovariance(const models::ModelParameters& scaled, const FittedEffects& fitted,
+                      models::ParameterCovariance* c) {
+  const Eigen::Index fit_size = fitted.covariance.rows();
+  const Eigen::Index offset = fitted.recalibration ? kRecalibrationSize : 0;
+  const Eigen::Index old_size = Eigen::Index(c->names.size());
+  Eigen::Index effect_size = 0;
+  for (const auto& e : fitted.effects) effect_size += Eigen::Index(e.parameters.size());
+  if (fit_size != offset + effect_size) return;  // no covariance from the fit: sd only
+  Eigen::VectorXd scale = Eigen::VectorXd::Ones(old_size + effect_size);
+  Eigen::MatrixXd g = Eigen::MatrixXd::Zero(old_size + effect_size, fit_size);
+  for (Eigen::Index i = 0; i < old_size && fitted.recalibration; ++i) {
+    const std::string& name = c->names[std::size_t(i)];
+    if (name.rfind("joint", 0) != 0 || name.size() < 8) continue;
+    const int j = name[5] - '1';
+    if (j < 0 || j > 1) continue;
+    const auto& law = scaled.joints[std::size_t(j)].compliance;
+    const double share = fitted.recalibration->parameters[std::size_t(j)];
+    const int k = LawCoefficient(name.substr(7));
+    if (k >= 0) {
+      const bool inverse = law.form == models::ComplianceForm::kInverseCubic;
+      scale[i] = inverse ? 1.0 / (1.0 + share) : 1.0 + share;
+      g(i, j) = (inverse ? -1.0 : 1.0) * law.cubic.coefficients[std::size_t(k)] / (1.0 + share);
+    }
+    if (name.substr(7) == "backlash_rad") g(i, 2 + j) = 1.0;
+  }
+  for (Eigen::Index k = 0; k < effect_size; ++k) g(old_size + k, offset + k) = 1.0;
+  Eigen::MatrixXd old = Eigen::MatrixXd::Zero(old_size + effect_size, old_size + effect_size);
+  old.topLeftCorner(old_size, old_size) = c->matrix;
+  c->matrix = scale.asDiagonal() * old * scale.asDiagonal() + g * fitted.covariance * g.transpose();
+  for (const auto& e : fitted.effects) {
+    for (const auto& parameter : e.parameter_names) c->names.push_back(e.name + "." + parameter);
   }
 }
 
 }  // namespace
 
-models::ModelParameters WithDiagnosedEffects(const models::ModelParameters& parameters,
-                                             const Diagnosis& diagnosis, const std::string& source) {
+models::ModelParameters WithFittedEffects(const models::ModelParameters& parameters,
+                                          const FittedEffects& fitted,
+                                          const std::string& provenance) {
   models::ModelParameters p = parameters;
-  if (diagnosis.recalibration) ApplyRecalibration(*diagnosis.recalibration, source, &p);
+  if (!p.covariance) p.covariance = models::ParameterCovariance{};
+  for (const EffectFinding& e : fitted.effects) DropEffect(&*p.covariance, e.name);
+  if (fitted.recalibration) ApplyRecalibration(*fitted.recalibration, provenance, &p);
+  ExtendCovariance(p, fitted, &*p.covariance);
+  if (p.covariance->names.empty()) p.covariance.reset();
   std::string names;
-  for (const EffectFinding& e : diagnosis.added) {
+  for (const EffectFinding& e : fitted.effects) {
     models::EffectParameters effect;
     effect.name = e.name;
     effect.parameter_names = e.parameter_names;
@@ -85,8 +138,15 @@ models::ModelParameters WithDiagnosedEffects(const models::ModelParameters& para
     p.effects.push_back(std::move(effect));
     names += (names.empty() ? "" : " + ") + e.name;
   }
-  Append(&p.description, "with " + names + " fitted by pliant diagnose on " + source);
+  Append(&p.description, "with " + names + " fitted by " + provenance);
   return p;
+}
+
+models::ModelParameters WithDiagnosedEffects(const models::ModelParameters& parameters,
+                                             const Diagnosis& diagnosis, const std::string& source) {
+  return WithFittedEffects(parameters,
+                           {diagnosis.added, diagnosis.recalibration, diagnosis.added_covariance},
+                           "pliant diagnose on " + source);
 }
 
 }  // namespace pliant::estimation

@@ -20,11 +20,6 @@ const std::string kSource = PLIANT_SOURCE_DIR;
 const std::string kParams = kSource + "/data/paper.json";
 const std::string kHiddenLog = kSource + "/data/divot_hidden_effect.csv";
 
-// Runs `command` with the test's directory as the working directory.
-CommandResult RunIn(const fs::path& dir, const std::string& command) {
-  return RunCommand("cd '" + dir.string() + "' && " + command, dir);
-}
-
 TEST(DiagnoseCommand, MissingLogExitsTwoNamingItAndWritesNoReport) {
   const auto dir = FreshDirectory("diagnose_missing_log");
   const std::string log = (dir / "missing.csv").string();

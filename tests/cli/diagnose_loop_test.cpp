@@ -3,15 +3,13 @@
 // log the diagnosis never saw is closer to the truth.
 #include <gtest/gtest.h>
 
-#include <algorithm>
-#include <cmath>
 #include <filesystem>
 #include <string>
 #include <vector>
 
-
 #include "pliant/io/log_reader.h"
 #include "pliant/io/parameters_json.h"
+#include "loaded_rms_error.h"
 #include "run_command.h"
 
 namespace pliant::testing {
@@ -22,36 +20,6 @@ const std::string kCli = PLIANT_CLI;
 const std::string kSource = PLIANT_SOURCE_DIR;
 const std::string kParams = kSource + "/data/paper.json";
 const std::string kHiddenLog = kSource + "/data/divot_hidden_effect.csv";
-
-CommandResult RunIn(const fs::path& dir, const std::string& command) {
-  return RunCommand("cd '" + dir.string() + "' && " + command, dir);
-}
-
-// RMS (rad) of joint j's corrected angle against the simulated truth over
-// the rows where that joint's effort departs from its median by more than
-// 0.3 N·m: the joint pushed past its clearance, the rows the diagnosis scores.
-// (On the rows where the joint rests inside its clearance while the other
-// is pushed, the coupling as the catalogue writes it moves the corrected
-// angle and the simulated tip does not follow: docs/diagnose.md.)
-double LoadedRmsError(const fs::path& corrected, int joint) {
-  const io::Log log = io::ReadLog(corrected.string());
-  const auto& h = log.header;
-  const std::string j = std::to_string(joint);
-  const int tau = h.Index("tau" + j), corr = h.Index("q" + j + "_corr"), truth = h.Index("q" + j + "_true");
-  if (tau < 0 || corr < 0 || truth < 0) return NAN;
-  std::vector<double> effort;
-  for (std::size_t r = 0; r < log.Rows(); ++r) effort.push_back(log.Value(r, tau));
-  std::nth_element(effort.begin(), effort.begin() + long(effort.size() / 2), effort.end());
-  const double median = effort[effort.size() / 2];
-  double sum = 0.0;
-  long n = 0;
-  for (std::size_t r = 0; r < log.Rows(); ++r) {
-    if (std::abs(log.Value(r, tau) - median) <= 0.3) continue;
-    const double e = log.Value(r, corr) - log.Value(r, truth);
-    sum += e * e, ++n;
-  }
-  return n > 100 ? std::sqrt(sum / double(n)) : NAN;
-}
 
 TEST(DiagnoseLoop, TheWrittenParametersCorrectALogTheDiagnosisNeverSaw) {
   const auto dir = FreshDirectory("diagnose_loop");

@@ -73,4 +73,9 @@ inline std::filesystem::path FreshDirectory(const std::string& name) {
   return dir;
 }
 
+/// Runs `command` with `dir` as the working directory, its output kept there.
+inline CommandResult RunIn(const std::filesystem::path& dir, const std::string& command) {
+  return RunCommand("cd '" + dir.string() + "' && " + command, dir);
+}
+
 }  // namespace pliant::testing

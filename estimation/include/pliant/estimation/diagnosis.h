@@ -159,6 +159,9 @@ struct Diagnosis {
   /// (compliance_share1, compliance_share2, clearance1, clearance2); empty
   /// without --add or without DiagnoseOptions::recalibrate_base.
   std::optional<EffectFinding> recalibration;
+  /// Covariance of the recalibration's parameters (when present) then the
+  /// --add effects', from a clustered sandwich over the segments.
+  Eigen::MatrixXd added_covariance;
   /// Effects selected stepwise (each refitted with the ones before it), in order.
   std::vector<std::string> selected;
   /// What this log could not tell and why (an unrecorded joint, loads inside

@@ -1,0 +1,172 @@
+// pliant identify --effect NAME: a catalogue effect fitted with its σ into
+// the parameters file, and `pliant correct` with that file closer to the
+// truth on a log the identification never saw (docs/identification.md).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "loaded_rms_error.h"
+#include "pliant/io/parameters_json.h"
+#include "run_command.h"
+
+namespace pliant::testing {
+namespace {
+
+namespace fs = std::filesystem;
+const std::string kCli = PLIANT_CLI;
+const std::string kMyPliant = PLIANT_MY_PLIANT;
+const std::string kSource = PLIANT_SOURCE_DIR;
+const std::string kSweep = kSource + "/data/bias_sweep.csv";
+// Hides deflection_coupling k12 = 0.006, k21 = 0.004 rad/(N·m) (data/README.md).
+const std::string kHiddenLog = kSource + "/data/divot_hidden_effect.csv";
+
+const models::EffectParameters* Find(const models::ModelParameters& p, const std::string& name) {
+  for (const auto& e : p.effects) {
+    if (e.name == name) return &e;
+  }
+  return nullptr;
+}
+
+int CountName(const models::ModelParameters& p, const std::string& name) {
+  int n = 0;
+  if (p.covariance) {
+    for (const auto& c : p.covariance->names) n += c == name ? 1 : 0;
+  }
+  return n;
+}
+
+// The fitted value lies within 3σ of the truth, and σ is neither zero nor a
+// tenth of the value (a σ that small would make any bias look significant;
+// one that large would say nothing).
+void ExpectWithinSigma(const models::EffectParameters& e, std::size_t k, double truth) {
+  ASSERT_GT(e.values.size(), k);
+  const double value = e.values[k], sd = e.sd[k];
+  EXPECT_GT(sd, 1e-3 * std::abs(truth)) << e.parameter_names[k];
+  EXPECT_LT(sd, 0.1 * std::abs(truth)) << e.parameter_names[k];
+  EXPECT_LT(std::abs(value - truth), 3.0 * sd)
+      << e.parameter_names[k] << " = " << value << " ± " << sd << ", truth " << truth;
+}
+
+TEST(IdentifyEffect, RecoversTheHiddenCouplingAndCorrectsANewLogBetter) {
+  const auto dir = FreshDirectory("identify_effect_loop");
+  const auto base = RunIn(dir, kCli + " identify " + kSweep + " " + kHiddenLog + " -o base.json");
+  ASSERT_EQ(base.exit_code, 0) << base.err;
+  const auto with = RunIn(dir, kCli + " identify " + kSweep + " " + kHiddenLog +
+                                   " --effect deflection_coupling -o with.json");
+  ASSERT_EQ(with.exit_code, 0) << with.err;
+  EXPECT_NE(with.out.find("deflection_coupling: k12 = "), std::string::npos) << with.out;
+  EXPECT_NE(with.out.find("with the effects"), std::string::npos) << with.out;
+
+  const auto written = io::ReadParameters((dir / "with.json").string());
+  const auto* coupling = Find(written, "deflection_coupling");
+  ASSERT_NE(coupling, nullptr);
+  // Measured: k12 = 0.005973 ± 5.8e-05, k21 = 0.004012 ± 2.8e-05.
+  ExpectWithinSigma(*coupling, 0, 0.006);
+  ExpectWithinSigma(*coupling, 1, 0.004);
+  // The covariance carries the effect's parameters, their variance its σ.
+  ASSERT_TRUE(written.covariance);
+  const auto& c = *written.covariance;
+  for (std::size_t k = 0; k < 2; ++k) {
+    const std::string name = "deflection_coupling." + coupling->parameter_names[k];
+    ASSERT_EQ(CountName(written, name), 1) << name;
+    const auto i = std::find(c.names.begin(), c.names.end(), name) - c.names.begin();
+    EXPECT_NEAR(std::sqrt(c.matrix(i, i)), coupling->sd[k], 1e-12 + 1e-9 * coupling->sd[k]);
+  }
+  EXPECT_TRUE(io::ReadParameters((dir / "base.json").string()).effects.empty());
+
+  // Another log with the same instrument and effect, another seed and depth.
+  const auto sim = RunIn(
+      dir, kCli + " simulate " + kSource + "/experiments/scenarios/divot.json -o other.csv" +
+               " --seed 5 --set log.every_n_periods=30 --set experiment.depths_m=[0.13]" +
+               " --set 'hidden_effects={\"deflection_coupling\":{\"k12\":0.006,\"k21\":0.004}}'");
+  ASSERT_EQ(sim.exit_code, 0) << sim.err;
+  for (const char* params : {"base", "with"}) {
+    const auto r = RunIn(dir, kCli + " correct --params " + params + ".json other.csv -o " +
+                                  params + "_corrected.csv");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+  }
+  for (int joint : {1, 2}) {
+    const double before = LoadedRmsError(dir / "base_corrected.csv", joint);
+    const double after = LoadedRmsError(dir / "with_corrected.csv", joint);
+    std::printf("joint %d loaded-row RMS error: %.3f -> %.3f mrad\n", joint, 1e3 * before, 1e3 * after);
+    EXPECT_LT(after, 0.7 * before) << "joint " << joint << ": " << before << " -> " << after << " rad";
+  }
+}
+
+TEST(IdentifyEffect, AnUnknownNameExitsTwoAndWritesNothing) {
+  const auto dir = FreshDirectory("identify_effect_unknown");
+  std::ofstream(dir / "keep.json") << "keep me\n";
+  const auto r = RunIn(dir, kCli + " identify " + kSweep + " " + kHiddenLog +
+                                " --effect deflection_couplin -o keep.json");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_EQ(r.err.rfind("pliant identify: --effect deflection_couplin: not in the catalogue — "
+                        "one of: ", 0),
+            0u)
+      << r.err;
+  EXPECT_NE(r.err.find("deflection_coupling"), std::string::npos) << "lists the known names";
+  EXPECT_EQ(ReadText(dir / "keep.json"), "keep me\n");
+  // The base model's own effects are not extra effects.
+  const auto base = RunIn(dir, kCli + " identify " + kSweep + " --effect compliance -o x.json");
+  EXPECT_EQ(base.exit_code, 2) << base.err;
+  const auto twice = RunIn(dir, kCli + " identify " + kSweep +
+                                    " --effect joint_friction --effect joint_friction -o x.json");
+  EXPECT_EQ(twice.exit_code, 2) << twice.err;
+  EXPECT_NE(twice.err.find("--effect joint_friction: is given twice"), std::string::npos) << twice.err;
+  EXPECT_FALSE(fs::exists(dir / "x.json"));
+}
+
+TEST(IdentifyEffect, NoHeldTipToFitOnIsBadInput) {
+  const auto dir = FreshDirectory("identify_effect_no_tip");
+  const auto r = RunIn(dir, kCli + " identify " + kSweep + " --effect joint_friction -o x.json");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("no log holds the tip"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(dir / "x.json"));
+}
+
+// A prior that already carries the effect (from an earlier identify or
+// diagnose --write-params): refitted in place, not listed twice.
+TEST(IdentifyEffect, AnEffectInThePriorIsRefittedNotDuplicated) {
+  const auto dir = FreshDirectory("identify_effect_prior");
+  const std::string logs = " " + kSweep + " " + kHiddenLog;
+  ASSERT_EQ(RunIn(dir, kCli + " identify" + logs + " --effect deflection_coupling -o first.json")
+                .exit_code, 0);
+  const auto again = RunIn(dir, kCli + " identify" + logs +
+                                    " --prior first.json --effect deflection_coupling -o again.json");
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  const auto p = io::ReadParameters((dir / "again.json").string());
+  ASSERT_EQ(p.effects.size(), 1u);
+  EXPECT_EQ(CountName(p, "deflection_coupling.k12"), 1);
+  ExpectWithinSigma(p.effects[0], 0, 0.006);
+}
+
+// examples/my_effect: a user's effect, registered in its own pliant, is
+// identified like a built-in one; the plain pliant does not know it.
+TEST(IdentifyEffect, AUsersOwnEffectIsIdentified) {
+  const auto dir = FreshDirectory("identify_effect_user");
+  const auto sim = RunIn(
+      dir, kMyPliant + " simulate " + kSource + "/experiments/scenarios/divot.json -o one_sided.csv" +
+               " --seed 3 --set log.every_n_periods=30 --set experiment.depths_m=[0.15]" +
+               " --set experiment.peak_torques_nm=[1.0]" +
+               " --set 'hidden_effects={\"one_sided_compliance\":{\"c1\":0.01,\"c2\":0.01}}'");
+  ASSERT_EQ(sim.exit_code, 0) << sim.err;
+  const auto r = RunIn(dir, kMyPliant + " identify " + kSweep +
+                                " one_sided.csv --effect one_sided_compliance -o mine.json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto p = io::ReadParameters((dir / "mine.json").string());
+  const auto* mine = Find(p, "one_sided_compliance");
+  ASSERT_NE(mine, nullptr);
+  ExpectWithinSigma(*mine, 0, 0.01);
+  ExpectWithinSigma(*mine, 1, 0.01);
+  const auto plain = RunIn(dir, kCli + " identify " + kSweep +
+                                    " one_sided.csv --effect one_sided_compliance -o plain.json");
+  EXPECT_EQ(plain.exit_code, 2) << plain.err;
+  EXPECT_FALSE(fs::exists(dir / "plain.json"));
+}
+
+}  // namespace
+}  // namespace pliant::testing
