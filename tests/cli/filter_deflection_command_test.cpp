@@ -19,13 +19,8 @@ namespace pliant::testing {
 namespace {
 
 namespace fs = std::filesystem;
+const std::string kParams = std::string(PLIANT_SOURCE_DIR) + "/data/paper.json";
 const std::string kCli = PLIANT_CLI;
-const std::string kSource = PLIANT_SOURCE_DIR;
-const std::string kParams = kSource + "/data/paper.json";
-
-CommandResult RunIn(const fs::path& dir, const std::string& command) {
-  return RunCommand("cd '" + dir.string() + "' && " + command, dir);
-}
 
 double Median(std::vector<double> v) {
   std::nth_element(v.begin(), v.begin() + long(v.size() / 2), v.end());
@@ -62,10 +57,13 @@ double Rms(const std::vector<double>& e, double about = 0.0) {
 
 TEST(FilterDeflectionCommand, TheFilesCouplingTakesTheOtherJointsLoadOutOfTheEncoder) {
   const auto dir = FreshDirectory("filter_deflection");
+  const auto RunIn = [](const fs::path& in, const std::string& command) {
+    return RunCommand("cd '" + in.string() + "' && " + command, in);
+  };
   auto with = io::ReadParameters(kParams);
   with.effects.push_back({"deflection_coupling", {"k12", "k21"}, {0.006, 0.004}, {0.0, 0.0}});
   io::WriteParameters((dir / "with.json").string(), with);
-  const std::string simulate = kCli + " simulate " + kSource + "/experiments/scenarios/divot.json" +
+  const std::string simulate = kCli + " simulate " + PLIANT_SOURCE_DIR + "/experiments/scenarios/divot.json" +
                                " --seed 5 --set log.every_n_periods=30" +
                                " --set experiment.depths_m=[0.13] --set 'hidden_effects=";
   ASSERT_EQ(RunIn(dir, simulate + R"({"deflection_coupling":{"k12":0.006,"k21":0.004}}' -o coupled.csv)")
