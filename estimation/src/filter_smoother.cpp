@@ -11,24 +11,25 @@ constexpr int kTorque = kStateTorque, kBacklash = kStateBacklash, kScale = kStat
               kClearance = kStateClearance;
 using Matrix = FilterStateMatrix;
 
-Matrix TransitionMatrix(const FilterTransition& t) {
-  Matrix f = Matrix::Identity();
-  f(kTorque, kTorque) = t.f_torque_torque;
-  f(kTorque, kScale) = t.f_torque_scale;
-  f(kBacklash, kTorque) = t.f_backlash_torque;
-  f(kBacklash, kBacklash) = t.f_backlash_backlash;
-  f(kBacklash, kClearance) = t.f_backlash_clearance;
-  return f;
+// F·M for the transition's F: the identity but for tau's row (∂tau+/∂tau,
+// ∂tau+/∂s) and b's (∂b+/∂tau, ∂b+/∂b, ∂b+/∂e), so only those two rows change.
+Matrix TransitionTimes(const FilterTransition& t, const Matrix& m) {
+  Matrix out = m;
+  out.row(kTorque) = t.f_torque_torque * m.row(kTorque) + t.f_torque_scale * m.row(kScale);
+  out.row(kBacklash) = t.f_backlash_torque * m.row(kTorque) +
+                       t.f_backlash_backlash * m.row(kBacklash) +
+                       t.f_backlash_clearance * m.row(kClearance);
+  return out;
 }
 
-// F·B(P)·Fᵀ + Q with F = I but for b's row and tau's, B the seating bound
-// (as the filter predicts). B(P) − P acts as process noise added at k, so the
-// smoother's cross-covariance stays P·Fᵀ.
+// F·B(P)·Fᵀ + Q with B the seating bound (as the filter predicts). B(P) − P
+// acts as process noise added at k, so the smoother's cross-covariance stays
+// P·Fᵀ.
 Matrix Predicted(const Matrix& p, const FilterTransition& t) {
-  const Matrix f = TransitionMatrix(t);
   Matrix bounded = p;
   SeatingBound(&bounded, t.seating_bound_weight);
-  Matrix out = f * bounded * f.transpose();
+  const Matrix f_bounded = TransitionTimes(t, bounded);
+  Matrix out = TransitionTimes(t, f_bounded.transpose());  // F·(F·B)ᵀ = F·B·Fᵀ, B symmetric
   out.diagonal() += t.process_noise;
   return out;
 }
@@ -58,9 +59,15 @@ void SmoothStep(SmootherStep* here, const SmootherStep& next) {
     if (!transition.predicted) continue;  // a restart: nothing links k to k+1
     FilterJointState& state = here->state[j];
     const Matrix p_pred = Predicted(state.covariance, transition);
-    const Matrix f = TransitionMatrix(transition);
-    // C = P̂ Fᵀ (P⁻)⁻¹ = ((P⁻)⁻¹ F P̂)ᵀ, P⁻ and P̂ symmetric.
-    const Matrix gain = p_pred.ldlt().solve(f * state.covariance).transpose();
+    // C = P̂ Fᵀ (P⁻)⁻¹ = ((P⁻)⁻¹ F P̂)ᵀ, P⁻ and P̂ symmetric. Solved a column at
+    // a time: Eigen's solve with a 6×6 right-hand side takes its blocked
+    // (dynamic-size) path, slower at this size.
+    const Eigen::LDLT<Matrix> factor(p_pred);
+    Matrix solved = TransitionTimes(transition, state.covariance);
+    for (int c = 0; c < kFilterJointStates; ++c) {
+      solved.col(c) = factor.solve(solved.col(c).eval());
+    }
+    const Matrix gain = solved.transpose();
     state.mean += gain * (next.state[j].mean - transition.predicted_mean);
     state.covariance += gain * (next.state[j].covariance - p_pred) * gain.transpose();
     state.covariance = 0.5 * (state.covariance + state.covariance.transpose()).eval();

@@ -5,13 +5,18 @@
 namespace pliant::models {
 namespace {
 
-// Craig's modified DH link transform: Rx(alpha) · Tx(a) · Rz(theta) · Tz(d).
+// Craig's modified DH link transform: Rx(alpha) · Tx(a) · Rz(theta) · Tz(d),
+// written out (Craig, eq. 3.6) rather than composed from four transforms: the
+// filter's output and the tip-error statistics evaluate it on every row.
 Eigen::Isometry3d ModifiedDh(double alpha, double a, double theta, double d) {
-  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
-  t.rotate(Eigen::AngleAxisd(alpha, Eigen::Vector3d::UnitX()));
-  t.translate(Eigen::Vector3d(a, 0.0, 0.0));
-  t.rotate(Eigen::AngleAxisd(theta, Eigen::Vector3d::UnitZ()));
-  t.translate(Eigen::Vector3d(0.0, 0.0, d));
+  const double ct = std::cos(theta), st = std::sin(theta);
+  const double ca = std::cos(alpha), sa = std::sin(alpha);
+  Eigen::Isometry3d t;
+  t.linear() << ct, -st, 0.0,  //
+      st * ca, ct * ca, -sa,   //
+      st * sa, ct * sa, ca;
+  t.translation() << a, -sa * d, ca * d;
+  t.makeAffine();
   return t;
 }
 

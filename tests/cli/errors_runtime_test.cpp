@@ -103,19 +103,12 @@ TEST(Warning, FilterCountsRowsOutsideTheValidRange) {
   EXPECT_TRUE(fs::exists(dir / "out.csv"));
 }
 
-fs::path WriteCalibration(const fs::path& dir, pliant::testing::CalibrationLogSpec spec) {
-  spec.truth = models::testing::PaperParameters();
-  const fs::path path = dir / "calibration.csv";
-  io::WriteLog(path.string(), pliant::testing::MakeCalibrationLog(spec));
-  return path;
-}
-
 TEST(Warning, IdentifyWithoutABiasSweepSaysTheBiasKeepsItsPrior) {
   const auto dir = FreshDirectory("errors_warning_no_sweep");
   pliant::testing::CalibrationLogSpec spec;
   spec.depths_m = {0.10, 0.14, 0.18, 0.22};
   spec.bias_sweep = false;
-  const auto log = WriteCalibration(dir, spec);
+  const auto log = pliant::testing::WritePaperCalibrationLog(dir, spec);
   // The smoother (the paper's procedure refuses held-tip logs alone).
   const auto r = RunCommand(kCli + " identify " + Quoted(log) + " -o " +
                                 Quoted(dir / "p.json"),
@@ -134,7 +127,7 @@ TEST(Warning, IdentifyWithATipNeverLoadedSaysKAndDeltaKeepTheirPrior) {
   pliant::testing::CalibrationLogSpec spec;
   spec.depths_m = {0.12, 0.18};
   spec.torque_limit_nm = 0.05;  // below the contact thresholds (0.1, 0.2 N·m)
-  const auto log = WriteCalibration(dir, spec);
+  const auto log = pliant::testing::WritePaperCalibrationLog(dir, spec);
   const auto r = RunCommand(kCli + " identify --method paper " + Quoted(log) + " -o " +
                                 Quoted(dir / "p.json"),
                             dir);

@@ -22,18 +22,11 @@ using pliant::testing::RunCommand;
 
 const std::string kCli = PLIANT_CLI;
 
-fs::path WriteCalibration(const fs::path& dir, pliant::testing::CalibrationLogSpec spec) {
-  spec.truth = models::testing::PaperParameters();
-  const fs::path path = dir / "calibration.csv";
-  io::WriteLog(path.string(), pliant::testing::MakeCalibrationLog(spec));
-  return path;
-}
-
 TEST(PliantIdentify, WritesParametersThatParamsReadsBack) {
   const auto dir = FreshDirectory("identify_params");
   pliant::testing::CalibrationLogSpec spec;
   spec.depths_m = {0.09, 0.12, 0.15, 0.18, 0.22};
-  const auto log = WriteCalibration(dir, spec);
+  const auto log = pliant::testing::WritePaperCalibrationLog(dir, spec);
   const auto out = dir / "params.json";
   const auto run = RunCommand(kCli + " identify '" + log.string() + "' -o '" + out.string() + "'", dir);
   ASSERT_EQ(run.exit_code, 0) << run.err;
@@ -62,7 +55,7 @@ TEST(PliantIdentify, SaysWhatALogWithoutHeldTipCannotIdentify) {
   const auto dir = FreshDirectory("identify_free");
   pliant::testing::CalibrationLogSpec spec;
   spec.clamp = false;
-  const auto log = WriteCalibration(dir, spec);
+  const auto log = pliant::testing::WritePaperCalibrationLog(dir, spec);
   const auto run = RunCommand(kCli + " identify --method paper '" + log.string() + "' -o '" +
                                   (dir / "p.json").string() + "'", dir);
   EXPECT_EQ(run.exit_code, 0) << run.err;

@@ -8,10 +8,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <random>
 #include <vector>
 
+#include "paper_parameters.h"
 #include "pliant/io/log.h"
+#include "pliant/io/log_writer.h"
 #include "pliant/models/parameters.h"
 
 namespace pliant::testing {
@@ -78,6 +81,16 @@ inline io::Log MakeCalibrationLog(const CalibrationLogSpec& spec) {
     }
   }
   return log;
+}
+
+/// The calibration log of the paper's instrument (spec.truth set to the
+/// paper's parameters), written to dir/calibration.csv; returns its path.
+inline std::filesystem::path WritePaperCalibrationLog(const std::filesystem::path& dir,
+                                                      CalibrationLogSpec spec) {
+  spec.truth = models::testing::PaperParameters();
+  const std::filesystem::path path = dir / "calibration.csv";
+  io::WriteLog(path.string(), MakeCalibrationLog(spec));
+  return path;
 }
 
 }  // namespace pliant::testing

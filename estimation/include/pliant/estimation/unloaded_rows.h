@@ -28,7 +28,9 @@ UnloadedRun FindUnloadedRun(const std::vector<double>& load_nm, double band_nm,
 
 struct TareOffset {
   double offset_nm = 0.0;  ///< mean load over the unloaded rows: add it to tau0
-  double sd_nm = 0.0;      ///< its standard deviation (sample sd / √n)
+  /// Its standard deviation: sample sd / √n, raised to the batch-means
+  /// estimate when consecutive rows share their errors.
+  double sd_nm = 0.0;
   std::size_t rows = 0;
   /// The offset exceeds 2·√(sd² + bias_sd²): the log's unloaded rows disagree
   /// with the parameters' bias beyond its σ.
