@@ -4,6 +4,7 @@
 //                    (Jet Jacobians, dense Joseph update; bench/filter_baselines.h),
 //   dense_dynamic  — the same with dynamic-size Eigen matrices,
 //   contact        — the filter without the tip_fixed hint (contact inferred),
+//   deflection     — the filter with one deflection effect in the parameters,
 // on a 1.5 kHz divot-push log drawn from the model. Each benchmark times every
 // step on its own (steady_clock, its overhead subtracted) and reports the
 // median and the 99th percentile in ns, and the heap allocations per step.
@@ -131,6 +132,17 @@ void BM_FilterStepContact(benchmark::State& state) {
   });
 }
 
+// With one deflection effect in the parameters (deflection_coupling: the
+// encoder model's Jet through the catalogue code, and the other joint's load
+// as a consider input). What the file's deflection effects cost on top of
+// BM_FilterStep. (The log is the same: the cost, not the fit, is measured.)
+void BM_FilterStepDeflection(benchmark::State& state) {
+  auto parameters = pliant::models::testing::PaperParameters();
+  parameters.effects.push_back({"deflection_coupling", {"k12", "k21"}, {0.006, 0.004}, {0.0, 0.0}});
+  pliant::estimation::ComplianceFilter filter(parameters);
+  TimeSteps(state, [&](const FilterSample& s) { benchmark::DoNotOptimize(filter.Step(s)); });
+}
+
 void BM_DenseFixedEkf(benchmark::State& state) {
   pliant::bench::DenseFixedEkf ekf(pliant::models::testing::PaperParameters(), {});
   TimeSteps(state, [&](const FilterSample& s) {
@@ -171,6 +183,7 @@ BENCHMARK(BM_Equation2)->Iterations(2'000'000);
 BENCHMARK(BM_FilterStep)->Iterations(2'000'000);
 BENCHMARK(BM_FilterStepAligned)->Iterations(2'000'000);
 BENCHMARK(BM_FilterStepContact)->Iterations(2'000'000);
+BENCHMARK(BM_FilterStepDeflection)->Iterations(2'000'000);
 BENCHMARK(BM_DenseFixedEkf)->Iterations(2'000'000);
 BENCHMARK(BM_DenseDynamicEkf)->Iterations(1'000'000);
 BENCHMARK(BM_Offline900k)->Iterations(1)->Unit(benchmark::kSecond);

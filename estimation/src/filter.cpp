@@ -95,6 +95,7 @@ ComplianceFilter::Impl::Impl(const models::ModelParameters& p, const FilterOptio
   }
   window_nis.assign(o.mismatch_window, 0.0);
   window_dof.assign(o.mismatch_window, 0);
+  PrepareDeflectionEffects();
   if (o.align_inertial_torque && options.motor_inertia_kg_m2 > 0.0) {
     const double lag_steps = MotorMotion::LagSeconds(o) / o.sample_period_s;
     alignment_steps = std::clamp(static_cast<int>(std::lround(lag_steps)), 0, kHeldCapacity - 1);
@@ -154,16 +155,26 @@ void ComplianceFilter::Impl::Initialise(const FilterSample& sample, double depth
     joint[j].mean << tip, tau, b, 1.0, 0.0, 0.0;
     joint[j].covariance = PriorCovariance(options, delta[j], uncertainty[j]);
     transition[j] = FilterTransition{};
+  }
+  // The file's deflection effects at those loads (their inputs: this row's).
+  const ExtraDeflection extra = Deflection();
+  for (int j = 0; j < 2; ++j) {
+    joint[j].mean[kTip] -= extra.value[j];
     transition[j].predicted_mean = joint[j].mean;
   }
   start_time_s = sample.time_s;
   initialised = true;
 }
 
-// h_j(x) = q_tip_j + b_j + s_j·K_j(L)·tau_j, K from the ComplianceEffect; its
-// Jet gives the value and the row ∂h_j/∂(q_tip, tau, b, s, e, beta).
-void ComplianceFilter::Impl::EncoderModel(double depth_m, Eigen::Vector2d* predicted,
-                                          Vector* h) const {
+// h_j(x) = q_tip_j + b_j + s_j·K_j(L)·tau_j + Σ Δq_j(tau_1, tau_2), K from the
+// ComplianceEffect and Δq the parameters file's deflection effects; Jets give
+// the value and the row ∂h_j/∂(q_tip, tau, b, s, e, beta). The blocks keep no
+// cross-covariance, so a coupling effect's ∂Δq_j/∂tau_i (i ≠ j) is not a row
+// entry: the other joint's tau enters at its estimate, a consider input whose
+// variance (∂Δq_j/∂tau_i)²·P_i(tau, tau) is added to the encoder's noise
+// (coupling_variance; 0 without a coupling effect).
+void ComplianceFilter::Impl::EncoderModel(double depth_m, Eigen::Vector2d* predicted, Vector* h,
+                                          Eigen::Vector2d* coupling_variance) const {
   models::JointState<StateJet> state;
   state.insertion_depth_m = StateJet(depth_m);
   for (int j = 0; j < 2; ++j) {
@@ -176,6 +187,16 @@ void ComplianceFilter::Impl::EncoderModel(double depth_m, Eigen::Vector2d* predi
                        StateJet(x[kScale], kScale) * bend[j];
     (*predicted)[j] = q.a;
     h[j] = q.v;
+  }
+  coupling_variance->setZero();
+  if (deflection_effects.empty()) return;
+  const ExtraDeflection extra = Deflection();
+  for (int j = 0; j < 2; ++j) {
+    const int other = 1 - j;
+    (*predicted)[j] += extra.value[j];
+    h[j][kTorque] += extra.slope(j, j);
+    const double cross = extra.slope(j, other);
+    (*coupling_variance)[j] = cross * cross * joint[other].covariance(kTorque, kTorque);
   }
 }
 

@@ -22,8 +22,9 @@ namespace filter_internal {
 
 // One slot per state of a joint block, (q_tip, tau, b, s, e, beta). Both joints are
 // evaluated in one pass with each joint's inputs seeded in its own block's
-// slots: no effect on the filter's path couples the joints, so each output's
-// derivatives are with respect to its own joint's states.
+// slots: no built-in part of the model couples the joints, so each output's
+// derivatives are with respect to its own joint's states. (The parameters
+// file's deflection effects may couple them: filter_deflection.cpp.)
 using StateJet = ceres::Jet<double, kFilterJointStates>;
 constexpr int kTip = kStateTip, kTorque = kStateTorque, kBacklash = kStateBacklash,
               kScale = kStateScale, kClearance = kStateClearance, kOffset = kStateEffortOffset;
@@ -55,6 +56,14 @@ struct InstrumentUncertainty {
 
 // Joint j's prior covariance for a clearance δ (filter.cpp).
 Matrix PriorCovariance(const FilterOptions& o, double delta, const InstrumentUncertainty& u);
+
+// The parameters file's deflection effects at the state's loads
+// (filter_deflection.cpp): Σ Δq_j (rad) and its slope ∂Δq_j/∂τ_i (rad/N·m),
+// from the effects' own code with ceres::Jet.
+struct ExtraDeflection {
+  Eigen::Vector2d value = Eigen::Vector2d::Zero();
+  Eigen::Matrix2d slope = Eigen::Matrix2d::Zero();  // (j, i): ∂Δq_j/∂τ_i
+};
 
 // The contact chain's prediction for one step (filter_contact.cpp).
 struct ContactPrior {
@@ -163,6 +172,11 @@ struct ComplianceFilter::Impl {
   void StepState(const FilterSample& sample);
   void AdvanceState(const FilterSample& sample, double previous_depth, StepTally* tally);
   void ExtraInternalTorque(const FilterSample& sample);
+  void PrepareDeflectionEffects();
+  filter_internal::ExtraDeflection DeflectionAt(double torque1_nm, double torque2_nm) const;
+  filter_internal::ExtraDeflection Deflection() const {
+    return DeflectionAt(joint[0].mean[kStateTorque], joint[1].mean[kStateTorque]);
+  }
   double ContactOnsetVariance(const FilterSample& sample, int j, double dt);
   void UpdateMeasurements(const FilterSample& sample, StepTally* tally);
   void UpdateEffort(const FilterSample& sample, int j, bool unloaded, StepTally* tally);
@@ -171,9 +185,11 @@ struct ComplianceFilter::Impl {
   FilterEstimate Output(const FilterSample& newest);
 
   void Initialise(const FilterSample& sample, double depth);
-  void Predict(int j, double dt, bool tip_fixed, bool seated, double encoder_increment);
+  void Predict(int j, double dt, bool tip_fixed, bool seated, double encoder_increment,
+               double extra_compliance);
   void Release(int j, double dt, double encoder_increment);
-  void EncoderModel(double depth, Eigen::Vector2d* predicted, Vector* h) const;
+  void EncoderModel(double depth, Eigen::Vector2d* predicted, Vector* h,
+                    Eigen::Vector2d* coupling_variance) const;
   /// Which states an update may not move (Schmidt–Kalman consider states),
   /// a mask of these bits (ScalarUpdate says why for each).
   enum Consider : unsigned {
@@ -215,6 +231,16 @@ struct ComplianceFilter::Impl {
   ExtraEffects extra_effects;
   models::TravelSinceReversal travel;
   Eigen::Vector2d extra_internal_torque_nm{0.0, 0.0};  // this state step's
+  // The row's inputs the effects see (encoder angles, depth, travel); the
+  // deflection effects get the state's τ on top (filter_deflection.cpp).
+  models::JointState<double> effect_inputs;
+  // The file's deflection effects: their index in extra_effects and their
+  // parameters as Jet constants (sized once: Step never allocates).
+  struct DeflectionEffect {
+    std::size_t index = 0;
+    std::vector<EffectJet> parameters;
+  };
+  std::vector<DeflectionEffect> deflection_effects;
   models::ComplianceEffect compliance;
   std::array<StateJet, 8> compliance_coefficients;  // constants (zero derivatives)
   double delta[2];

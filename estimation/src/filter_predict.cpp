@@ -13,8 +13,10 @@ using namespace filter_internal;
 
 // F = I but for b's row (∂b+/∂tau, ∂b+/∂b, ∂b+/∂e from the hysteresis step's Jet), so
 // F·P·Fᵀ touches only b's row and column.
+// extra_compliance: the file's deflection effects' ∂Δq_j/∂tau_j (rad/N·m), on
+// top of s·K(L) where a held load follows the motor.
 void ComplianceFilter::Impl::Predict(int j, double dt, bool tip_fixed, bool seated,
-                                     double encoder_increment) {
+                                     double encoder_increment, double extra_compliance) {
   FilterJointState& s = joint[j];
   FilterTransition& t = transition[j];
   const auto& o = options;
@@ -73,9 +75,15 @@ void ComplianceFilter::Impl::Predict(int j, double dt, bool tip_fixed, bool seat
   // gains ∂tau+/∂s). b's step above read the load before this one, so F is
   // this row's map after b's, and F·P·Fᵀ takes it after b's.
   double fts = 0.0;
+  // s·K + c = (s + c/K)·K: the scale's Jet carries the effects' slope c. A
+  // slope that would leave no positive compliance is not taken.
+  const double k_depth = ComplianceAtDepth(j);
+  const double bend = s.mean[kScale] * k_depth;
+  const double extra = bend + extra_compliance > 0.1 * bend ? extra_compliance : 0.0;
   if (tip_fixed && o.load_follows_motor) {
-    const StateJet added = HeldLoadIncrement(hold, encoder_increment,
-                                             StateJet(s.mean[kScale], kScale), ComplianceAtDepth(j));
+    const StateJet added =
+        HeldLoadIncrement(hold, encoder_increment,
+                          StateJet(s.mean[kScale], kScale) + extra / k_depth, k_depth);
     s.mean[kTorque] += added.a;
     fts = added.v[kScale];
     const Vector torque_row = P.col(kTorque) + fts * P.col(kScale);
@@ -90,8 +98,7 @@ void ComplianceFilter::Impl::Predict(int j, double dt, bool tip_fixed, bool seat
   q[kTorque] =
       tip_fixed ? HeldLoadProcessVariance(
                       o, dt, motion[j].increment_peak_rad,
-                      s.mean[kScale] * ComplianceAtDepth(j),
-                      motion[j].InertialTorque(o), hold)
+                      bend + extra, motion[j].InertialTorque(o), hold)
                 : o.external_torque_rate_nm * o.external_torque_rate_nm * dt + contact_onset[j];
   q[kBacklash] = bound.process_variance;
   q[kScale] = o.compliance_scale_rate * o.compliance_scale_rate * dt;
@@ -147,7 +154,7 @@ void ComplianceFilter::Impl::Release(int j, double dt, double encoder_increment)
 // What the process model cannot bridge (a pose change between two rows, a
 // time gap, the first sample after missing ones, every quasi-static row):
 // a free tip starts again at the encoder with the prior's doubt, uncorrelated
-// (q_tip = q_enc − b − s·K·tau at the predicted b, tau, s); a held tip stays,
+// (q_tip = q_enc − b − s·K·tau − Σ Δq at the predicted b, tau, s); a held tip stays,
 // as the tip_fixed hint says, and its shaft keeps its wall (the hysteresis
 // moves it with the load). The load starts again from its prior spread. The
 // instrument's states (s, e, β) carry over. The prediction has run first:
@@ -158,7 +165,8 @@ void ComplianceFilter::Impl::Reinitialise(int j, const FilterSample& sample) {
   const Matrix prior = PriorCovariance(options, delta[j], uncertainty[j]);
   if (!sample.tip_fixed && std::isfinite(sample.encoder_rad[j])) {
     s.mean[kTip] = sample.encoder_rad[j] - s.mean[kBacklash] -
-                   s.mean[kScale] * ComplianceAtDepth(j) * s.mean[kTorque];
+                   s.mean[kScale] * ComplianceAtDepth(j) * s.mean[kTorque] -
+                   Deflection().value[j];
     P.row(kTip).setZero();
     P.col(kTip).setZero();
     P(kTip, kTip) = prior(kTip, kTip);

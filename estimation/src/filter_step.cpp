@@ -23,6 +23,7 @@ void ComplianceFilter::Impl::StepState(const FilterSample& sample) {
   for (const auto& jp : parameters.joints) {
     if (depth < jp.depth_min_m || depth > jp.depth_max_m) tally.flags |= kFlagDepthOutOfRange;
   }
+  ExtraInternalTorque(sample);  // (and the row's inputs the effects see)
   if (!initialised) {
     Initialise(sample, depth);
     state_clock.Start(sample);
@@ -32,7 +33,6 @@ void ComplianceFilter::Impl::StepState(const FilterSample& sample) {
     AdvanceState(sample, previous_depth, &tally);
   }
   last_tip_fixed = sample.tip_fixed;
-  ExtraInternalTorque(sample);
   UpdateMeasurements(sample, &tally);
   for (int j = 0; j < 2; ++j) Repair(j, sample, check_phase == kFullCheckPeriod / 2 * j, &tally);
   check_phase = (check_phase + 1) % kFullCheckPeriod;
@@ -58,7 +58,7 @@ void ComplianceFilter::Impl::StepState(const FilterSample& sample) {
 // step's encoder angles (held friction: by the travel since the last reversal).
 void ComplianceFilter::Impl::ExtraInternalTorque(const FilterSample& sample) {
   if (parameters.effects.empty()) return;  // (the common case: nothing to evaluate)
-  models::JointState<double> state;
+  models::JointState<double>& state = effect_inputs;
   state.encoder_angle_rad << sample.encoder_rad[0], sample.encoder_rad[1];
   state.insertion_depth_m = depth;
   state.travel_since_reversal_rad = travel.Update(state.encoder_angle_rad);
@@ -86,6 +86,10 @@ void ComplianceFilter::Impl::AdvanceState(const FilterSample& sample, double pre
   // A quasi-static log's t is a pose index: the process noise is one nominal period's.
   if (gap) dt = options.sample_period_s;
   step_dt = dt;
+  // A held load follows the motor through the incremental compliance, the
+  // deflection effects' own slope ∂Δq_j/∂tau_j included (a coupling's cross
+  // slope is left to the encoder updates).
+  const ExtraDeflection extra = Deflection();
   for (int j = 0; j < 2; ++j) {
     bend_rate_rad_s[j] = options.quasi_static ? 0.0 : increment[j] / dt;
     if (!options.joint_recorded[j]) continue;  // an unrecorded joint keeps its prior
@@ -96,7 +100,8 @@ void ComplianceFilter::Impl::AdvanceState(const FilterSample& sample, double pre
     }
     const bool jump = implausible_jump[j] && std::isfinite(sample.encoder_rad[j]);
     contact_onset[j] = ContactOnsetVariance(sample, j, dt);
-    Predict(j, dt, sample.tip_fixed, sample.tip_fixed && !last_tip_fixed, increment[j]);
+    Predict(j, dt, sample.tip_fixed, sample.tip_fixed && !last_tip_fixed, increment[j],
+            extra.slope(j, j));
     if (jump || gap) {
       Reinitialise(j, sample);
       // The quasi-static log's every row re-initialises: a flag there says nothing.
@@ -132,9 +137,9 @@ void ComplianceFilter::Impl::UpdateMeasurements(const FilterSample& sample, Step
     if (options.joint_recorded[j]) UpdateEffort(sample, j, unloaded, tally);
   }
   // Encoders, linearised at the state the efforts just updated.
-  Eigen::Vector2d predicted;
+  Eigen::Vector2d predicted, coupling_variance;
   Vector h[2];
-  EncoderModel(depth, &predicted, h);
+  EncoderModel(depth, &predicted, h, &coupling_variance);
   for (int j = 0; j < 2; ++j) {
     if (!options.joint_recorded[j]) continue;
     if (!std::isfinite(sample.encoder_rad[j])) {
@@ -144,7 +149,8 @@ void ComplianceFilter::Impl::UpdateMeasurements(const FilterSample& sample, Step
     const double deflection = options.deflection_model_error * h[j][kScale];
     h[j][kScale] *= sure_fraction[j];
     ScalarUpdate(j, kEncoderChannel, h[j], sample.encoder_rad[j] - predicted[j],
-                 options.encoder_noise_rad * options.encoder_noise_rad + deflection * deflection,
+                 options.encoder_noise_rad * options.encoder_noise_rad + deflection * deflection +
+                     coupling_variance[j],
                  tally, false, ConsiderFor(sample, j, unloaded));
   }
   for (int j = 0; j < 2; ++j) {

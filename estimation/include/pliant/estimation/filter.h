@@ -41,10 +41,12 @@
 //   ≥ P (SeatingBound), which drops the tip–load correlation the free tip
 //   built (q_tip = q_enc − b − s·K·tau) at a known cost in variance.
 // Measurements:
-//   q_enc_j  = q_tip_j + b_j + s_j·K_j(L)·tau_j   (ComplianceEffect)
-//            variance σ_enc² + (ε·K_j(L)·tau_j)², ε = deflection_model_error
-//   tau_meas_j − tau0_j(q_enc, L) − J·θ̈_j = tau_j + beta_j  (bias torque; J·θ̈ with the
-//            tip held, MotorMotion)                            σ_effort
+//   q_enc_j  = q_tip_j + b_j + s_j·K_j(L)·tau_j + D_j(tau_1, tau_2)   (ComplianceEffect;
+//            D_j: the parameters file's deflection effects at the row's inputs)
+//            variance σ_enc² + (ε·K_j(L)·tau_j)² + (∂D_j/∂tau_i)²·P_i(tau, tau),
+//            i ≠ j, ε = deflection_model_error
+//   tau_meas_j − tau0_j(q_enc, L) − J·θ̈_j − (the file's internal-torque effects)
+//            = tau_j + beta_j  (bias torque; J·θ̈ with the tip held, MotorMotion)  σ_effort
 //   q_ref_j  = q_tip_j                             (when the log has it) σ_ref
 //   With the tip free, s, e and beta are consider states of the encoder and
 //   effort updates (Schmidt–Kalman: zero gain, their doubt still carried into
@@ -55,10 +57,11 @@
 //   beta from the load only where the shaft leaves its wall, which the smooth
 //   dead zone cannot place (docs/filter.md, "The bias offset is a consider
 //   state"); on a sample with a reference (the tip known) they teach it.
-// Jacobians come from ceres::Jet. The joints share no state and no
-// measurement while no coupling effect is on, so the filter runs two blocks
-// of 6 states with sequential scalar updates (Joseph form); q12_cov is then
-// zero.
+// Jacobians come from ceres::Jet. The joints share no state, so the filter
+// runs two blocks of 6 states with sequential scalar updates (Joseph form);
+// q12_cov is zero. A deflection effect that couples the joints (D_1 reads
+// tau_2) takes the other joint's tau at its estimate, a consider input whose
+// variance is the last term of the encoder's (docs/filter.md, "The model").
 //
 // Real time: Step() never allocates, never throws, and takes a bounded time
 // (no loops that depend on the data). A Filter object is not thread-safe: one
