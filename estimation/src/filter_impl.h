@@ -181,7 +181,7 @@ struct ComplianceFilter::Impl {
   void UpdateMeasurements(const FilterSample& sample, StepTally* tally);
   void UpdateEffort(const FilterSample& sample, int j, bool unloaded, StepTally* tally);
   double PoseChangeEvidence(const FilterSample& sample, int j, double residual);
-  void Reinitialise(int j, const FilterSample& sample);
+  void Reinitialise(int j, const FilterSample& sample, bool held_tip_stays);
   FilterEstimate Output(const FilterSample& newest);
 
   void Initialise(const FilterSample& sample, double depth);

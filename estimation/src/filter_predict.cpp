@@ -154,16 +154,18 @@ void ComplianceFilter::Impl::Release(int j, double dt, double encoder_increment)
 // What the process model cannot bridge (a pose change between two rows, a
 // time gap, the first sample after missing ones, every quasi-static row):
 // a free tip starts again at the encoder with the prior's doubt, uncorrelated
-// (q_tip = q_enc − b − s·K·tau − Σ Δq at the predicted b, tau, s); a held tip stays,
-// as the tip_fixed hint says, and its shaft keeps its wall (the hysteresis
+// (q_tip = q_enc − b − s·K·tau − Σ Δq at the predicted b, tau, s). A tip held
+// on this row and the last one stays, as the tip_fixed hint says (held_tip_stays);
+// a hold that begins here (after free rows: a new clamp, a pose away) starts
+// at the encoder as a free tip does. The shaft keeps its wall (the hysteresis
 // moves it with the load). The load starts again from its prior spread. The
 // instrument's states (s, e, β) carry over. The prediction has run first:
 // this widens its result.
-void ComplianceFilter::Impl::Reinitialise(int j, const FilterSample& sample) {
+void ComplianceFilter::Impl::Reinitialise(int j, const FilterSample& sample, bool held_tip_stays) {
   FilterJointState& s = joint[j];
   Matrix& P = s.covariance;
   const Matrix prior = PriorCovariance(options, delta[j], uncertainty[j]);
-  if (!sample.tip_fixed && std::isfinite(sample.encoder_rad[j])) {
+  if (!held_tip_stays && std::isfinite(sample.encoder_rad[j])) {
     s.mean[kTip] = sample.encoder_rad[j] - s.mean[kBacklash] -
                    s.mean[kScale] * ComplianceAtDepth(j) * s.mean[kTorque] -
                    Deflection().value[j];

@@ -103,7 +103,11 @@ void ComplianceFilter::Impl::AdvanceState(const FilterSample& sample, double pre
     Predict(j, dt, sample.tip_fixed, sample.tip_fixed && !last_tip_fixed, increment[j],
             extra.slope(j, j));
     if (jump || gap) {
-      Reinitialise(j, sample);
+      // A held tip stays only through a hold: one that begins here may be a
+      // pose away from the free tip (a new clamp). Within a hold an encoder
+      // jump is left to the gate (a glitch) and its re-acquisition.
+      const bool held_tip_stays = sample.tip_fixed && last_tip_fixed;
+      Reinitialise(j, sample, held_tip_stays);
       // The quasi-static log's every row re-initialises: a flag there says nothing.
       if (jump || !options.quasi_static) tally->flags |= kFlagReinitialised;
     }

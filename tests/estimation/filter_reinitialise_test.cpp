@@ -115,20 +115,20 @@ TEST(FilterNeverDiverges, MissingSamplesWhileTheArmMovesFastAreBridged) {
   EXPECT_GE(r.reinitialised, 1);
 }
 
-TEST(FilterNeverDiverges, ALogThatStartsLoadedIsHonestWithinTheBound) {
-  // The tip held from the first row with 0.8 N·m on joint 1 and −0.5 on joint
-  // 2, the shafts on their walls, then the load released over 1 s.
+// The tip held at `truth` with `start_load` (N·m) released over 1 s, the
+// shafts starting on their walls; rows time stamped from `t0_s`.
+std::vector<Row> HeldAndReleased(int count, const Eigen::Vector2d& truth,
+                                 const Eigen::Vector2d& start_load, double t0_s, unsigned seed) {
   const auto p = models::testing::PaperParameters();
   const FilterOptions o;
-  std::mt19937_64 rng(4);
+  std::mt19937_64 rng(seed);
   std::normal_distribution<double> normal(0.0, 1.0);
   std::vector<Row> rows;
-  const Eigen::Vector2d start_load(0.8, -0.5);
   Eigen::Vector2d backlash(p.joints[0].backlash_rad, -p.joints[1].backlash_rad);
-  for (int k = 0; k < 3000; ++k) {
+  for (int k = 0; k < count; ++k) {
     Row r;
-    r.truth << 0.1, -0.2;
-    r.sample.time_s = k / kRate;
+    r.truth = truth;
+    r.sample.time_s = t0_s + k / kRate;
     r.sample.tip_fixed = true;
     const Eigen::Vector2d load = start_load * std::max(0.0, 1.0 - k / kRate);
     for (int j = 0; j < 2; ++j) {
@@ -142,8 +142,30 @@ TEST(FilterNeverDiverges, ALogThatStartsLoadedIsHonestWithinTheBound) {
     }
     rows.push_back(r);
   }
+  return rows;
+}
+
+TEST(FilterNeverDiverges, ALogThatStartsLoadedIsHonestWithinTheBound) {
+  // The tip held from the first row with 0.8 N·m on joint 1 and −0.5 on joint 2.
+  const auto rows = HeldAndReleased(3000, {0.1, -0.2}, {0.8, -0.5}, 0.0, 4);
   const Recovery r = RunFilter(rows, 0);
   EXPECT_LE(r.honest_from, std::size_t(kBoundRows));
+}
+
+// A calibration log's free sweep ends at one pose and its clamp begins at
+// another: the held tip is somewhere new, not where the free tip was. Kept
+// where it was, joint 2 stayed 0.8 rad off on a foreign simulator's log, its
+// encoder rejected on every held row.
+TEST(FilterNeverDiverges, AHoldThatBeginsAPoseAwayStartsAtTheEncoder) {
+  for (const double gap_s : {2.0, 0.0}) {
+    auto rows = FreeMotion(300, 0.0, 5);
+    const double t0 = rows.back().sample.time_s + 1.0 / kRate + gap_s;
+    const auto held = HeldAndReleased(1500, {0.1, 0.6}, {0.6, -0.7}, t0, 6);
+    rows.insert(rows.end(), held.begin(), held.end());
+    const Recovery r = RunFilter(rows, 300);
+    EXPECT_LE(r.honest_from, std::size_t(300 + kBoundRows)) << "gap " << gap_s << " s";
+    EXPECT_EQ(r.reinitialised, 1) << "gap " << gap_s << " s";
+  }
 }
 
 }  // namespace
