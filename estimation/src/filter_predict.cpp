@@ -119,7 +119,10 @@ void ComplianceFilter::Impl::Predict(int j, double dt, bool tip_fixed, bool seat
 // Released and held again elsewhere, after a transit the log does not show
 // (hold means): the load came off and the arm moved with the tip free, so the
 // shaft forgets its wall as a free tip's does (BacklashRelax: by how far the
-// joint moved; a joint that did not move keeps it). The tip and the load start
+// joint moved; a joint that did not move keeps it). Whether the unseen transit
+// re-seated the shaft the log cannot say: b's doubt gains the prior's whole
+// spread, δ²/3, whatever the mean keeps (an instrument whose clearance has no
+// memory sits centred when unloaded). The tip and the load start
 // again from their priors (F's row for tau is zero); the instrument's states
 // (s, e, beta) carry over with what was learned about them.
 void ComplianceFilter::Impl::Release(int j, double dt, double encoder_increment) {
@@ -140,7 +143,7 @@ void ComplianceFilter::Impl::Release(int j, double dt, double encoder_increment)
   Vector q = Vector::Zero();
   q[kTip] = prior(kTip, kTip);
   q[kTorque] = prior(kTorque, kTorque);
-  q[kBacklash] = (1.0 - keep * keep) * prior(kBacklash, kBacklash);
+  q[kBacklash] = prior(kBacklash, kBacklash);
   P.diagonal() += q;
   t.predicted_mean = s.mean;
   t.f_torque_torque = t.f_torque_scale = 0.0;

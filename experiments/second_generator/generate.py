@@ -26,7 +26,12 @@ One hidden effect per case, in this generator's own form:
   backlash_depth (delta x (1 + 4 (L - 0.155))), bias_torque_cross_joint
   (joint 1 bias + 0.15 q2 + 0.10 q2^2).
 
-Usage: generate.py OUT_DIR [--seed N] [--case NAME ...]
+The instrument and the sensors can be varied, to draw families of logs unlike
+these defaults: --k-scale K1 K2, --clearance D1 D2 (rad), --take-up (N.m),
+--noise-scale X (effort, encoder and tracker noise times X), --rate HZ (the
+test log's sample rate).
+
+Usage: generate.py OUT_DIR [--seed N] [--case NAME ...] [instrument options]
 writes OUT_DIR/CASE/calibration.csv and OUT_DIR/CASE/test.csv per case.
 """
 import argparse
@@ -193,24 +198,37 @@ def test_log(case, rng):
 
 
 def main():
+    global K_SCALE, DELTA, TAKE_UP, EFFORT_NOISE, ENCODER_NOISE, TRACKER_NOISE, RATE_HZ
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("out_dir")
     parser.add_argument("--seed", type=int, default=11)
     parser.add_argument("--case", action="append", choices=CASES)
+    parser.add_argument("--k-scale", type=float, nargs=2, default=K_SCALE)
+    parser.add_argument("--clearance", type=float, nargs=2, default=DELTA)
+    parser.add_argument("--take-up", type=float, default=TAKE_UP)
+    parser.add_argument("--noise-scale", type=float, default=1.0)
+    parser.add_argument("--rate", type=float, default=RATE_HZ)
     args = parser.parse_args()
+    K_SCALE, DELTA, TAKE_UP, RATE_HZ = list(args.k_scale), list(args.clearance), args.take_up, args.rate
+    EFFORT_NOISE *= args.noise_scale
+    ENCODER_NOISE *= args.noise_scale
+    TRACKER_NOISE *= args.noise_scale
+    instrument = "K x%.2f / x%.2f of the paper's, clearance %.1f / %.1f mrad" % (
+        K_SCALE[0], K_SCALE[1], 1e3 * DELTA[0], 1e3 * DELTA[1])
     for index, case in enumerate(args.case or CASES):
         rng = np.random.default_rng(args.seed * 100 + index)
         directory = os.path.join(args.out_dir, case)
         os.makedirs(directory, exist_ok=True)
         meta = [("generator", "experiments/second_generator/generate.py (numpy), seed %d" % args.seed),
-                ("instrument", "K x0.85 / x1.10 of the paper's, clearance 7.0 / 9.0 mrad")]
+                ("instrument", instrument)]
         columns, rows = calibration(case, rng)
         write(os.path.join(directory, "calibration.csv"),
               meta + [("protocol", "quasi-static poses, one row per pose (mean of 20 samples)")],
               columns, rows)
         columns, rows = test_log(case, rng)
         write(os.path.join(directory, "test.csv"),
-              meta + [("protocol", "held tip pushed at 100 Hz, tracker reference")], columns, rows)
+              meta + [("protocol", "held tip pushed at %g Hz, tracker reference" % RATE_HZ)],
+              columns, rows)
 
 
 if __name__ == "__main__":
