@@ -75,6 +75,16 @@ ContactPrior MixContact(const FilterOptions& o, double probability, double dt);
 // variance) and the no-contact residual (its scale², Student-t with free_dof
 // degrees of freedom, Gaussian when free_dof is infinite).
 // held_log_evidence: a further log-likelihood ratio for contact (QuasiStaticHeldEvidence).
+// log p(r | contact) − log p(r | free) + held_log_evidence, within ±700.
+double ContactLogLikelihoodRatio(double contact_innovation, double contact_variance,
+                                 double free_residual, double free_variance, double free_dof,
+                                 double held_log_evidence);
+// An effort's update waiting for the shared contact probability (ShareContact).
+struct PendingEffort {
+  bool update = false, mixture = false;
+  double residual = 0.0, variance = 0.0, moving = 0.0, rest = 0.0, arm_torque = 0.0;
+  double log_likelihood_ratio = 0.0;
+};
 double ContactPosterior(double prior, double contact_innovation, double contact_variance,
                         double free_residual, double free_variance, double free_dof,
                         double held_log_evidence = 0.0);
@@ -92,6 +102,17 @@ struct LastPose {
   double residual_nm = 0.0;
   double depth_m = 0.0;
   double internal_torque_nm = 0.0;  // the parameters' further effects' (held friction)
+};
+// How fast the arm moves as a free arm would: the speed of z = q_enc − s·K(L)·r,
+// r the effort residual. A held tip's motor moves only as the load bends the
+// shaft, so z stands still while a pushed tip's encoder moves; a free arm's
+// z moves with it. A fading-memory linear fit (Morrison's degree-1 filter,
+// critically damped α-β) with time constant kFreeMotionTimeS.
+struct FreeArmMotion {
+  bool started = false;
+  double level_rad = 0.0, velocity_rad_s = 0.0;
+  double theta_dt_s = -1.0, theta = 0.0;  // e^(−dt/T) for the last dt (rarely changes)
+  void Advance(double dt, double z_rad);
 };
 // The Gaussian-sum collapse of the slab posterior and its tau = 0 conditional.
 void CollapseContact(FilterJointState* state, double probability);
@@ -182,6 +203,9 @@ struct ComplianceFilter::Impl {
   void UpdateEffort(const FilterSample& sample, int j, bool unloaded, StepTally* tally);
   double PoseChangeEvidence(const FilterSample& sample, int j, double residual);
   void Reinitialise(int j, const FilterSample& sample, bool held_tip_stays);
+  double FreeSpeed(int j, const FilterSample& sample, double effort_less_bias);
+  void ShareContact();
+  void FinishEffort(const FilterSample& sample, int j, bool unloaded, StepTally* tally);
   FilterEstimate Output(const FilterSample& newest);
 
   void Initialise(const FilterSample& sample, double depth);
@@ -269,6 +293,8 @@ struct ComplianceFilter::Impl {
   double contact_prior[2] = {1.0, 1.0};
   double contact_onset[2] = {0.0, 0.0};
   filter_internal::LastPose last_pose[2];  // quasi-static logs only
+  filter_internal::FreeArmMotion free_motion[2];  // without the tip_fixed hint
+  filter_internal::PendingEffort pending[2];
   filter_internal::UnmodelledEffort unmodelled[2];
   filter_internal::InternalTorque internal_torque[2];
   MotorMotion motion[2];  // for the inertial torque in the effort, from the newest sample

@@ -180,6 +180,7 @@ void ComplianceFilter::Impl::Reinitialise(int j, const FilterSample& sample, boo
   transition[j].process_noise[kTorque] += prior(kTorque, kTorque);
   for (int& r : rejections[j]) r = 0;
   restart_output[j] = true;
+  free_motion[j].started = false;  // z jumps with the pose
 }
 
 }  // namespace pliant::estimation

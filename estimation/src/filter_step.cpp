@@ -140,6 +140,8 @@ void ComplianceFilter::Impl::UpdateMeasurements(const FilterSample& sample, Step
   for (int j = 0; j < 2; ++j) {
     if (options.joint_recorded[j]) UpdateEffort(sample, j, unloaded, tally);
   }
+  ShareContact();
+  for (int j = 0; j < 2; ++j) FinishEffort(sample, j, unloaded, tally);
   // Encoders, linearised at the state the efforts just updated.
   Eigen::Vector2d predicted, coupling_variance;
   Vector h[2];
@@ -207,10 +209,13 @@ void ComplianceFilter::Impl::UpdateEffort(const FilterSample& sample, int j, boo
                        : 0.0;
   const double noise = options.effort_noise_nm * options.effort_noise_nm;
   // Unmodelled internal torque counts as effort noise (FilterOptions::moving_effort_sd_nm).
+  // Moving as a free arm moves (FreeArmMotion): a pushed tip's encoder moves
+  // by the load's bending, which is no free motion and no internal torque.
   const double moving =
       options.quasi_static
           ? 0.0
-          : std::min(1.0, std::abs(motion[j].velocity_rad_s) / options.unmodelled_effort_speed_rad_s);
+          : std::min(1.0, std::abs(FreeSpeed(j, sample, effort - tau0)) /
+                              options.unmodelled_effort_speed_rad_s);
   const double rest = noise + options.unmodelled_effort_sd_nm * options.unmodelled_effort_sd_nm;
   // The moving arm's own torque, as far as the log has taught it, is taken
   // out; what it has not taught is effort noise.
@@ -229,6 +234,7 @@ void ComplianceFilter::Impl::UpdateEffort(const FilterSample& sample, int j, boo
   const FilterJointState& s = joint[j];
   const double residual =
       effort - tau0 - inertial - arm_torque - extra_internal_torque_nm[j] - s.mean[kOffset];
+  double log_likelihood_ratio = 0.0;
   if (mixture) {
     // The evidence for contact is a residual beyond what the unmodelled
     // internal torque explains, whatever the load did before: a contact's load
@@ -242,23 +248,68 @@ void ComplianceFilter::Impl::UpdateEffort(const FilterSample& sample, int j, boo
     // stiction is not a contact); a settled arm's is the table's error and noise.
     const double dof = moving > 0.5 ? options.moving_effort_dof
                                     : std::numeric_limits<double>::infinity();
-    contact_probability[j] = ContactPosterior(contact_prior[j], residual,
-                                              sd_c * sd_c + free_variance, residual,
-                                              free_variance, dof,
-                                              PoseChangeEvidence(sample, j, residual));
-    unmodelled[j].Learn((1.0 - contact_probability[j]) * moving *
+    // The log-likelihood ratio of contact; the posterior is shared by both
+    // joints (ShareContact): a contact is the tip's, not one joint's.
+    log_likelihood_ratio = ContactLogLikelihoodRatio(residual, sd_c * sd_c + free_variance,
+                                                     residual, free_variance, dof,
+                                                     PoseChangeEvidence(sample, j, residual));
+  }
+  pending[j] = PendingEffort{true, mixture, residual, variance, moving, rest, arm_torque,
+                             log_likelihood_ratio};
+}
+
+// One contact for the tip: the chain's prior (the same for both joints once
+// they have shared a posterior) with both joints' evidence.
+void ComplianceFilter::Impl::ShareContact() {
+  double log_odds = 0.0;
+  int scored = 0, joint_scored = 0;
+  for (int j = 0; j < 2; ++j) {
+    if (!pending[j].update || !pending[j].mixture) continue;
+    log_odds += pending[j].log_likelihood_ratio;
+    ++scored;
+    joint_scored = j;
+  }
+  if (scored == 0) return;
+  const double prior = contact_prior[joint_scored];
+  const double prior_log_odds = std::log(prior) - std::log1p(-prior);  // ±inf at 0 and 1
+  const double shared =
+      1.0 / (1.0 + std::exp(-std::clamp(prior_log_odds + log_odds, -700.0, 700.0)));
+  for (int j = 0; j < 2; ++j) {
+    if (pending[j].update && pending[j].mixture) contact_probability[j] = shared;
+  }
+}
+
+// The effort's update once the contact is known: what the no-contact rows
+// teach of the arm's own torque, the Kalman update, the mixture's collapse.
+void ComplianceFilter::Impl::FinishEffort(const FilterSample& sample, int j, bool unloaded,
+                                          StepTally* tally) {
+  PendingEffort& e = pending[j];
+  if (!e.update) return;
+  e.update = false;
+  if (e.mixture) {
+    const double free_share = 1.0 - contact_probability[j];
+    unmodelled[j].Learn(free_share * e.moving *
                             -std::expm1(-step_dt / options.unmodelled_effort_memory),
-                        residual, rest);
+                        e.residual, e.rest);
     if (!options.quasi_static) {
-      arm.Learn((1.0 - contact_probability[j]) * moving, residual + arm_torque,
-                rest + unmodelled[j].variance,
-                std::exp(-step_dt / options.internal_torque_memory_s));
+      internal_torque[j].Learn(free_share * e.moving, e.residual + e.arm_torque,
+                               e.rest + unmodelled[j].variance,
+                               std::exp(-step_dt / options.internal_torque_memory_s));
     }
   }
   ScalarUpdate(j, kEffortChannel, Vector::Unit(kTorque) + Vector::Unit(kOffset),
-               residual - s.mean[kTorque], variance, tally, false,
+               e.residual - joint[j].mean[kTorque], e.variance, tally, false,
                ConsiderFor(sample, j, unloaded));
-  if (mixture) CollapseContact(&joint[j], contact_probability[j]);
+  if (e.mixture) CollapseContact(&joint[j], contact_probability[j]);
+}
+
+// The speed of z = q_enc − s·K(L)·r (FreeArmMotion), r the effort less the
+// bias, the further effects' internal torque and the learned offset.
+double ComplianceFilter::Impl::FreeSpeed(int j, const FilterSample& sample, double effort_less_bias) {
+  const FilterJointState& s = joint[j];
+  const double r = effort_less_bias - extra_internal_torque_nm[j] - s.mean[kOffset];
+  free_motion[j].Advance(step_dt, sample.encoder_rad[j] - s.mean[kScale] * ComplianceAtDepth(j) * r);
+  return free_motion[j].velocity_rad_s;
 }
 
 // A quasi-static log's evidence for contact from the pose change

@@ -74,9 +74,13 @@ ComplianceFilter ClearanceFreeFilter(const FilterOptions& o) {
 
 // The clamp's corrected angle on the rows whose load is small (< 0.3 N·m),
 // where the old per-row draw shrank the load toward 0: RMS error against the
-// held tip, rad.
+// held tip, rad. The clamped joint alone is recorded, as in the paper's
+// clamped-beam files (data/real/jhu2017_clamped_j*.csv): the contact is the
+// tip's, and a recorded still joint's efforts would weigh in (the test below).
 double SmallLoadTipError(const std::vector<Pose>& poses) {
-  ComplianceFilter filter = ClearanceFreeFilter(QuasiStaticOptions());
+  FilterOptions o = QuasiStaticOptions();
+  o.joint_recorded[1] = false;
+  ComplianceFilter filter = ClearanceFreeFilter(o);
   double sum = 0.0;
   int n = 0;
   for (const Pose& pose : poses) {
@@ -100,23 +104,30 @@ TEST(FilterQuasiStaticContact, AClampsLoadThroughZeroStaysAContact) {
   EXPECT_LT(SmallLoadTipError(ClampedLoop(2e-3, 0.0, 1)), 2e-3);
 }
 
-TEST(FilterQuasiStaticContact, TheFreeJointStaysUncorrected) {
-  // Joint 2 of the clamp above is free and still, its table off by 0.03 N·m
-  // (within σ_rest): its correction stays under a tenth of K·0.03 on average.
-  ComplianceFilter filter = ClearanceFreeFilter(QuasiStaticOptions());
-  double worst = 0.0, sum = 0.0;
-  int n = 0;
-  for (const Pose& pose : ClampedLoop(2e-3, 0.03, 3)) {
-    const FilterEstimate e = filter.Step(pose.sample);
-    const double correction = std::abs(e.corrected_rad[1] - pose.sample.encoder_rad[1]);
-    worst = std::max(worst, correction);
-    sum += correction;
-    ++n;
-    EXPECT_LT(e.contact_probability[1], 0.5) << "pose " << n;
-  }
+TEST(FilterQuasiStaticContact, AClampHoldsTheOtherJointToo) {
+  // A clamp holds the tip, so joint 2 is held though its load is 0 (its table
+  // off by 0.03 N·m): one contact for both joints. Once joint 1's load has
+  // grown, the filter without the hint corrects joint 2 as the hint does:
+  // within 0.4 of what the table's error moves it by (K2·0.03 ≈ 1.1 mrad;
+  // measured 0.30 mrad at most), and no further than that from the truth.
   const double k2 = models::ComplianceAt(models::testing::PaperParameters().joints[1], kDepth);
-  EXPECT_LT(sum / n, 0.1 * k2 * 0.03);
-  EXPECT_LT(worst, k2 * 0.03);
+  const double table_error_rad = k2 * 0.03;
+  ComplianceFilter inferred = ClearanceFreeFilter(QuasiStaticOptions());
+  ComplianceFilter told = ClearanceFreeFilter(QuasiStaticOptions());
+  int n = 0, compared = 0;
+  for (const Pose& pose : ClampedLoop(2e-3, 0.03, 3)) {
+    const FilterEstimate e = inferred.Step(pose.sample);
+    FilterSample hinted = pose.sample;
+    hinted.tip_fixed = true;
+    const FilterEstimate h = told.Step(hinted);
+    ++n;
+    EXPECT_EQ(e.contact_probability[0], e.contact_probability[1]) << "pose " << n;
+    if (std::abs(pose.load_nm) < 0.3) continue;
+    ++compared;
+    EXPECT_NEAR(e.corrected_rad[1], h.corrected_rad[1], 0.4 * table_error_rad) << "pose " << n;
+    EXPECT_NEAR(e.corrected_rad[1], pose.tip[1], 1.2 * table_error_rad) << "pose " << n;
+  }
+  EXPECT_GT(compared, n / 2);
 }
 
 // A free sweep, one pose per row, the table off by a slowly varying
