@@ -1,7 +1,8 @@
-// --add on parameters whose K(L) an identification bent in depth: the added
-// effect is fitted with the compliance's depth tilt, which undoes the bend
-// (one scale per joint cannot), and the error falls to what the truth's own
-// law leaves.
+// Parameters an identification bent to absorb an effect. --add on a K(L)
+// bent in depth: the added effect is fitted with the compliance's depth tilt,
+// which undoes the bend (one scale per joint cannot), and the error falls to
+// what the truth's own law leaves. A dead zone widened beyond every push of
+// the log: the joint is not compared, and the diagnosis says so.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -65,6 +66,25 @@ TEST(DiagnoseAdd, TheAddedEffectIsFittedWithTheCompliancesDepthTilt) {
   EXPECT_NEAR(k[1], -0.004, 0.001);
   EXPECT_LT(with_bent.rms_after_mm, 1.05 * with_truth.rms_after_mm);
   EXPECT_GT(with_bent.rms_before_mm, 1.2 * with_truth.rms_before_mm);
+}
+
+TEST(DiagnoseInput, AJointNoPushLoadsBeyondItsClearanceLoadIsSaidNotDiagnosed) {
+  const auto scenario = ShortDivot("{}");  // pushes of 1 N·m
+  const io::Log log = experiments::Simulate(scenario, 3).log;
+  models::ModelParameters wide = ModelOf(scenario);
+  wide.joints[0].deadzone_width_nm = 0.8;  // compared beyond 2 × 0.8 = 1.6 N·m
+  const auto d = estimation::Diagnose(log, "divot.csv", wide, {});
+  EXPECT_EQ(d.before.rms_rad[0], 0.0);  // no joint 1 row compared
+  EXPECT_GT(d.before.rms_rad[1], 0.0);
+  int said = 0;
+  for (const auto& note : d.notes) {
+    std::printf("  note: %s\n", note.c_str());
+    if (note.find("joint 1 is not diagnosed: no row loads it beyond 1.6 N·m") != std::string::npos &&
+        note.find("dead-zone width 0.8 N·m") != std::string::npos)
+      ++said;
+    EXPECT_EQ(note.find("joint 2 is not diagnosed"), std::string::npos) << note;
+  }
+  EXPECT_EQ(said, 1);
 }
 
 }  // namespace
