@@ -237,8 +237,14 @@ Diagnosis Diagnose(const io::Log& log, const std::string& log_path,
         problem,
         diagnosis::CrossValidated(problem, model, {}, diagnosis::WithAddedRefit(problem, added)));
     after = diagnosis::Residuals(problem, model, fixed);
+    // The recalibration as fitted with them (K's depth tilt included, which
+    // the candidates' refit lacks) stays in the model the candidates extend.
+    if (fitted.recalibration) {
+      fixed.push_back(problem.added_refit.front());
+      fixed.back().parameters = fitted.recalibration->parameters;
+    }
   }
-  const Residual baseline = fixed.empty() ? before : after;
+  const Residual baseline = added.empty() ? before : after;
   // Candidates are tried on top of the added effects as fitted, each against
   // the baseline of the recalibrated model.
   heldout_baseline = diagnosis::CrossValidated(problem, model, fixed, problem.refit);
