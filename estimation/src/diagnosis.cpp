@@ -213,7 +213,7 @@ Diagnosis Diagnose(const io::Log& log, const std::string& log_path,
 
   const diagnosis::BaseModel model(parameters);
   Problem problem = diagnosis::BuildProblem(log, log_path, model, added, options);
-  if (options.recalibrate_base) problem.refit = {diagnosis::BaseRecalibrationTerm(model)};
+  diagnosis::SetRecalibration(model, options.recalibrate_base, &problem);
   const std::vector<bool> all(problem.groups, true);
   Diagnosis d;
   d.reference = problem.reference;
@@ -234,10 +234,17 @@ Diagnosis Diagnose(const io::Log& log, const std::string& log_path,
     d.recalibration = fitted.recalibration;
     d.added_covariance = fitted.covariance;
     d.rms_after_mm = diagnosis::TipRmsMm(
-        problem, diagnosis::CrossValidated(problem, model, {}, diagnosis::WithRefit(problem, added)));
+        problem,
+        diagnosis::CrossValidated(problem, model, {}, diagnosis::WithAddedRefit(problem, added)));
     after = diagnosis::Residuals(problem, model, fixed);
+    // The recalibration as fitted with them (K's depth tilt included, which
+    // the candidates' refit lacks) stays in the model the candidates extend.
+    if (fitted.recalibration) {
+      fixed.push_back(problem.added_refit.front());
+      fixed.back().parameters = fitted.recalibration->parameters;
+    }
   }
-  const Residual baseline = fixed.empty() ? before : after;
+  const Residual baseline = added.empty() ? before : after;
   // Candidates are tried on top of the added effects as fitted, each against
   // the baseline of the recalibrated model.
   heldout_baseline = diagnosis::CrossValidated(problem, model, fixed, problem.refit);

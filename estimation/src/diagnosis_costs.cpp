@@ -136,39 +136,61 @@ class PriorCost final : public ceres::CostFunction {
 double ValueOf(double x) { return x; }
 double ValueOf(const EffectJet& x) { return x.a; }
 
-// The base model's own compliance and clearance, let loose: a share s_j of
-// K_j(L)·tau_j more deflection and d_j more clearance on the loaded wall. An
-// identification whose log held the effect has bent K and δ to absorb it;
-// refitted with each candidate, they stop hiding it (and a candidate no
-// longer wins by correcting K or δ alone).
+// The base model's own compliance and clearance, let loose: its K_j(L) scaled
+// by 1 + s_j and d_j more clearance on the loaded wall. An identification
+// whose log held the effect has bent K and δ to absorb it; refitted with each
+// candidate they stop hiding it (and a candidate no longer wins by correcting
+// K or δ alone). With `tilt` (an added effect's fit), K_j(L) is also tilted
+// in depth by u_j (CompliancePerTilt): a clearance that grows with depth was
+// identified as a K(L) that grows with depth, which one scale cannot undo.
+// Candidates are scored without it: on a log with one load level the tilt
+// mimics that clearance and would take its share from the candidate.
 class BaseRecalibration {
  public:
   static constexpr models::EffectInfo kInfo{
       "base_recalibration", models::Channel::kDeflection,
-      "the model's compliance scaled by 1 + s_j and its clearance widened by d_j, refitted "
-      "with every candidate"};
-  explicit BaseRecalibration(const BaseModel& model) : model_(&model) {}
+      "the model's compliance scaled by 1 + s_j and tilted in depth by u_j, and its clearance "
+      "widened by d_j, refitted with every candidate"};
+  BaseRecalibration(const BaseModel& model, bool tilt) : model_(&model), tilt_(tilt) {
+    for (int j = 0; j < 2; ++j) per_tilt_[j] = CompliancePerTilt(model.parameters().joints[j]);
+  }
   std::vector<models::ParameterSpec> Parameters() const {
-    return {{"compliance_share1", "", 0.0, -0.5, 0.5, 0.2},
-            {"compliance_share2", "", 0.0, -0.5, 0.5, 0.2},
-            {"clearance1", "rad", 0.0, -0.005, 0.005, 0.002},
-            {"clearance2", "rad", 0.0, -0.005, 0.005, 0.002}};
+    std::vector<models::ParameterSpec> specs = {{"compliance_share1", "", 0.0, -0.5, 0.5, 0.2},
+                                                {"compliance_share2", "", 0.0, -0.5, 0.5, 0.2},
+                                                {"clearance1", "rad", 0.0, -0.005, 0.005, 0.002},
+                                                {"clearance2", "rad", 0.0, -0.005, 0.005, 0.002}};
+    if (tilt_) {
+      specs.push_back({"compliance_tilt1", "", 0.0, -0.5, 0.5, 0.2});
+      specs.push_back({"compliance_tilt2", "", 0.0, -0.5, 0.5, 0.2});
+    }
+    return specs;
   }
   template <typename T>
   models::Vec2<T> operator()(const T* p, const models::JointState<T>& state) const {
     using std::tanh;
     models::Vec2<T> out;
     for (int j = 0; j < 2; ++j) {
-      const double k = models::ComplianceAt(model_->parameters().joints[j],
-                                            ValueOf(state.insertion_depth_m));
+      const auto& joint = model_->parameters().joints[j];
+      // The law is read at the depth clamped to its range, as ComplianceAt does.
+      const double depth =
+          std::clamp(ValueOf(state.insertion_depth_m), joint.depth_min_m, joint.depth_max_m);
+      const double k = models::ComplianceAt(joint, depth);
+      const double per_tilt = per_tilt_[j][2] * depth + per_tilt_[j][3];
+      const T u = tilt_ ? p[4 + j] : T(0.0);
+      const T tilted = joint.compliance.form == models::ComplianceForm::kInverseCubic
+                           ? T(1.0) / (T(1.0 / k) + u * per_tilt)
+                           : T(k) + u * per_tilt;
       const T& tau = state.external_torque_nm[j];
-      out[j] = p[j] * T(k) * tau + p[2 + j] * tanh(tau / T(model_->clearance_load_nm(j)));
+      out[j] = ((T(1.0) + p[j]) * tilted - T(k)) * tau +
+               p[2 + j] * tanh(tau / T(model_->clearance_load_nm(j)));
     }
     return out;
   }
 
  private:
   const BaseModel* model_;
+  bool tilt_;
+  std::array<double, 4> per_tilt_[2];
 };
 
 // The rows of one segment (a push, a clamp) share what the model lacks: the
@@ -203,9 +225,16 @@ Eigen::MatrixXd ClusteredBySegment(const Problem& problem, const std::vector<std
 
 }  // namespace
 
-Term BaseRecalibrationTerm(const BaseModel& model) {
-  std::shared_ptr<const EffectModel> effect = MakeEffectModel(BaseRecalibration(model));
+Term BaseRecalibrationTerm(const BaseModel& model, bool tilt) {
+  std::shared_ptr<const EffectModel> effect = MakeEffectModel(BaseRecalibration(model, tilt));
   return {effect, effect->DefaultParameters(), "base_recalibration"};
+}
+
+void SetRecalibration(const BaseModel& model, bool on, Problem* problem) {
+  problem->refit.clear(), problem->added_refit.clear();
+  if (!on) return;
+  problem->refit = {BaseRecalibrationTerm(model, false)};
+  problem->added_refit = {BaseRecalibrationTerm(model, true)};
 }
 
 FitResult FitTerms(const Problem& problem, const BaseModel& model, const std::vector<Term>& fixed,

@@ -263,6 +263,20 @@ Problem BuildProblem(const io::Log& log, const std::string& log_path, const Base
         "its history, so the clearance and effects of the clearance (backlash_depth) cannot "
         "be identified from this log; to identify them, push the held tip beyond those loads");
   }
+  // A recorded joint that no compared row loads is not diagnosed at all: say
+  // so, with the load it needed (a wide take-up width in the parameters
+  // raises it beyond every push of the log).
+  for (int j = 0; j < 2; ++j) {
+    const bool compared = std::any_of(all.begin(), all.end(), [j](const Sample& s) { return s.used[j]; });
+    if (!problem.joint_recorded[j] || compared) continue;
+    problem.notes.push_back(
+        "joint " + std::to_string(j + 1) + " is not diagnosed: no row loads it beyond " +
+        Format("%.3g", factor * model.clearance_load_nm(j)) + " N·m (" + Format("%.3g", factor) +
+        " × the parameters' clearance load, the largest of its dead-zone width " +
+        Format("%.3g", model.parameters().joints[j].deadzone_width_nm) + " N·m, tau_min and " +
+        "0.05 N·m); push it further, or check a dead-zone width wider than the clearance's "
+        "take-up (an identification can widen it to absorb a load effect)");
+  }
   // Thin evenly for speed (docs/diagnose-method.md: fitting on a subsample).
   const std::size_t stride =
       std::max<std::size_t>(1, (all.size() + options.max_samples - 1) / options.max_samples);

@@ -57,6 +57,9 @@ struct Problem {
   /// Terms refitted with every candidate and in the baseline it is scored
   /// against (the base model's recalibration), empty when off.
   std::vector<Term> refit;
+  /// Terms refitted with the added effects (`--add`, identify --effect): the
+  /// recalibration with K's depth tilt as well, empty when off.
+  std::vector<Term> added_refit;
   std::vector<std::string> notes;           ///< what the log cannot tell, in words
 };
 
@@ -186,8 +189,20 @@ FitResult FitTerms(const Problem& problem, const BaseModel& model, const std::ve
                    bool covariance, double size_factor, bool clustered = false);
 
 /// The base model's compliance share and clearance as a term to refit with
-/// each candidate (DiagnoseOptions::recalibrate_base); `model` must outlive it.
-Term BaseRecalibrationTerm(const BaseModel& model);
+/// each candidate (DiagnoseOptions::recalibrate_base), with `tilt` K's depth
+/// tilt as well (with the added effects); `model` must outlive it. Its
+/// parameters: s1, s2, d1, d2, then with `tilt` u1, u2.
+Term BaseRecalibrationTerm(const BaseModel& model, bool tilt);
+/// Problem::refit and Problem::added_refit of the base model, or none.
+void SetRecalibration(const BaseModel& model, bool on, Problem* problem);
+
+/// The change of a joint's stored law coefficients (the law's order) per unit
+/// of the recalibration's depth tilt u, before its scale 1 + s: with x the
+/// depth across the parameters' range (−1 … +1) and K_mid = K at its middle,
+/// an inverse cubic becomes 1/K − u·x/K_mid, a direct cubic K + u·x·K_mid —
+/// each its own form, so a parameters file holds the tilted law exactly. A
+/// beam series has no such term (its shape is geometry): zero, u is not read.
+std::array<double, 4> CompliancePerTilt(const models::JointParameters& joint);
 
 /// RMS (mm at the tip) over the samples of what `term` changes in the
 /// residual of the model with `fixed` (tip angles profiled like the residual),
@@ -201,7 +216,7 @@ std::array<double, 2> ContributionSizeMm(const Problem& problem, const BaseModel
 Term MakeTerm(const std::string& name);
 /// The log channels an effect reads, in the log's names.
 std::vector<std::string> ChannelsOf(const EffectModel& effect);
-/// `added` fitted jointly (with problem.refit) on every compared row, their
+/// `added` fitted jointly (with problem.added_refit) on every compared row, their
 /// σ from a clustered sandwich over the segments; `fixed` receives them at
 /// the fitted values.
 FittedEffects FitAdded(const Problem& problem, const BaseModel& model,
@@ -228,6 +243,8 @@ struct CandidateFit {
 
 /// `problem.refit` followed by `terms`: what a fit with these terms frees.
 std::vector<Term> WithRefit(const Problem& problem, const std::vector<Term>& terms);
+/// `problem.added_refit` followed by the added effects.
+std::vector<Term> WithAddedRefit(const Problem& problem, const std::vector<Term>& added);
 /// Ranks the candidates by what each explains that the others cannot: the
 /// material ones (missing by score and p) are fitted in pairs, cross-validated,
 /// and each is scored by its smallest held-out gain when added to another

@@ -6,13 +6,37 @@
 #include <cstdio>
 #include <string>
 
+#include "diagnosis_internal.h"
 #include "pliant/estimation/diagnosis.h"
 #include "pliant/estimation/effect_fit.h"
 
 namespace pliant::estimation {
+namespace diagnosis {
+
+std::array<double, 4> CompliancePerTilt(const models::JointParameters& joint) {
+  const double middle = 0.5 * (joint.depth_min_m + joint.depth_max_m);
+  const double half = 0.5 * (joint.depth_max_m - joint.depth_min_m);
+  const double k_middle = models::ComplianceAt(joint, middle);
+  // u·x = u·(L − L_mid)/half on 1/K (divided by K_mid) or on K (times K_mid):
+  // the linear and constant coefficients of the cubic.
+  switch (joint.compliance.form) {
+    case models::ComplianceForm::kInverseCubic:
+      return {0.0, 0.0, -1.0 / (k_middle * half), middle / (k_middle * half)};
+    case models::ComplianceForm::kDirectCubic:
+      return {0.0, 0.0, k_middle / half, -k_middle * middle / half};
+    case models::ComplianceForm::kBeamSeries:
+      break;
+  }
+  return {0.0, 0.0, 0.0, 0.0};
+}
+
+}  // namespace diagnosis
 namespace {
 
-constexpr Eigen::Index kRecalibrationSize = 4;  // s1, s2, d1, d2
+// The recalibration's parameters: s1, s2, d1, d2, then the depth tilts u1, u2.
+double Tilt(const EffectFinding& r, int joint) {
+  return r.parameters.size() > std::size_t(4 + joint) ? r.parameters[std::size_t(4 + joint)] : 0.0;
+}
 
 std::string Formatted(const char* format, double a, double b) {
   char text[160];
@@ -56,32 +80,40 @@ void DropEffect(models::ParameterCovariance* c, const std::string& effect) {
   *c = std::move(kept);
 }
 
-// K → (1 + s_j)·K and δ → δ + d_j in the values and their sources.
+// K tilted in depth by u_j (CompliancePerTilt), then K → (1 + s_j)·K, and
+// δ → δ + d_j, in the values and their sources.
 void ApplyRecalibration(const EffectFinding& r, const std::string& provenance,
                         models::ModelParameters* p) {
   for (int j = 0; j < 2; ++j) {
     auto& joint = p->joints[std::size_t(j)];
+    const auto per_tilt = diagnosis::CompliancePerTilt(joint);
+    for (int k = 0; k < 4; ++k)
+      joint.compliance.cubic.coefficients[std::size_t(k)] += Tilt(r, j) * per_tilt[std::size_t(k)];
     const double scale = 1.0 + r.parameters[std::size_t(j)];
     const double widening = r.parameters[std::size_t(2 + j)];
     const double widening_sd = r.parameter_sd.size() > std::size_t(2 + j) ? r.parameter_sd[2 + j] : 0.0;
     models::ScaleCompliance(joint.compliance, scale);
     // A clearance cannot be negative: what a narrower fit asks beyond 0 is not physical.
     joint.backlash_rad = std::max(0.0, joint.backlash_rad + widening);
-    Append(&joint.sources["compliance"], Formatted("scaled by %.4f", scale, 0.0) + " by " + provenance);
+    Append(&joint.sources["compliance"],
+           Formatted("tilted in depth by %+.4f, scaled by %.4f", Tilt(r, j), scale) + " by " +
+               provenance);
     Append(&joint.sources["backlash_rad"],
            Formatted("widened by %+.6f ± %.6f rad", widening, widening_sd) + " by " + provenance);
   }
 }
 
 // The file's covariance after the fit, to first order: the law's coefficients
-// c' = c·(1 + s)^∓1 (1/K's cubic divides, the direct forms multiply) and
-// δ' = δ + d move with the refit, and the effects' parameters join the list.
-// With G = ∂(file's parameters)/∂(fitted parameters) and D the scaling,
-// C' = D C D + G Σ Gᵀ over the old names followed by the effects'.
-void ExtendCovariance(const models::ModelParameters& scaled, const FittedEffects& fitted,
-                      models::ParameterCovariance* c) {
+// c' = (c + u·a)·(1 + s)^∓1 (a = CompliancePerTilt of the given law; 1/K's
+// cubic divides, the direct forms multiply) and δ' = δ + d move with the
+// refit, and the effects' parameters join the list. With G = ∂(file's
+// parameters)/∂(fitted parameters) and D the scaling, C' = D C D + G Σ Gᵀ
+// over the old names followed by the effects'.
+void ExtendCovariance(const models::ModelParameters& given, const models::ModelParameters& scaled,
+                      const FittedEffects& fitted, models::ParameterCovariance* c) {
   const Eigen::Index fit_size = fitted.covariance.rows();
-  const Eigen::Index offset = fitted.recalibration ? kRecalibrationSize : 0;
+  const Eigen::Index offset =
+      fitted.recalibration ? Eigen::Index(fitted.recalibration->parameters.size()) : 0;
   const Eigen::Index old_size = Eigen::Index(c->names.size());
   Eigen::Index effect_size = 0;
   for (const auto& e : fitted.effects) effect_size += Eigen::Index(e.parameters.size());
@@ -100,6 +132,9 @@ void ExtendCovariance(const models::ModelParameters& scaled, const FittedEffects
       const bool inverse = law.form == models::ComplianceForm::kInverseCubic;
       scale[i] = inverse ? 1.0 / (1.0 + share) : 1.0 + share;
       g(i, j) = (inverse ? -1.0 : 1.0) * law.cubic.coefficients[std::size_t(k)] / (1.0 + share);
+      if (offset > 4 + j)
+        g(i, 4 + j) = diagnosis::CompliancePerTilt(given.joints[std::size_t(j)])[std::size_t(k)] *
+                      scale[i];
     }
     if (name.substr(7) == "backlash_rad") g(i, 2 + j) = 1.0;
   }
@@ -121,7 +156,7 @@ models::ModelParameters WithFittedEffects(const models::ModelParameters& paramet
   if (!p.covariance) p.covariance = models::ParameterCovariance{};
   for (const EffectFinding& e : fitted.effects) DropEffect(&*p.covariance, e.name);
   if (fitted.recalibration) ApplyRecalibration(*fitted.recalibration, provenance, &p);
-  ExtendCovariance(p, fitted, &*p.covariance);
+  ExtendCovariance(parameters, p, fitted, &*p.covariance);
   if (p.covariance->names.empty()) p.covariance.reset();
   std::string names;
   for (const EffectFinding& e : fitted.effects) {

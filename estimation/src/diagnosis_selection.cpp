@@ -27,6 +27,12 @@ std::vector<Term> WithRefit(const Problem& problem, const std::vector<Term>& ter
   return all;
 }
 
+std::vector<Term> WithAddedRefit(const Problem& problem, const std::vector<Term>& added) {
+  std::vector<Term> all = problem.added_refit;
+  all.insert(all.end(), added.begin(), added.end());
+  return all;
+}
+
 Residual CrossValidated(const Problem& problem, const BaseModel& model,
                         const std::vector<Term>& fixed, const std::vector<Term>& fitted) {
   Residual heldout(problem.samples.size(), Eigen::Vector2d::Zero());

@@ -73,10 +73,11 @@ EffectFinding FindingOf(const Term& term, const std::vector<double>& values,
 FittedEffects FitAdded(const Problem& problem, const BaseModel& model,
                        const std::vector<Term>& added, std::vector<Term>* fixed) {
   const std::vector<bool> all(problem.groups, true);
-  const auto fit = FitTerms(problem, model, {}, WithRefit(problem, added), all, true, 1.0, true);
+  const auto fit = FitTerms(problem, model, {}, WithAddedRefit(problem, added), all, true, 1.0, true);
   FittedEffects out;
-  const std::size_t first = problem.refit.size();
-  if (first == 1) out.recalibration = FindingOf(problem.refit[0], fit.parameters[0], fit.parameter_sd, 0);
+  const std::size_t first = problem.added_refit.size();
+  if (first == 1)
+    out.recalibration = FindingOf(problem.added_refit[0], fit.parameters[0], fit.parameter_sd, 0);
   *fixed = added;
   for (std::size_t t = 0; t < added.size(); ++t) {
     (*fixed)[t].parameters = fit.parameters[first + t];
@@ -159,16 +160,17 @@ LogEffectFit FitEffectsOnLogs(const std::vector<NamedLog>& logs,
   problem.rms_window_s = options.rms_window_s;
   problem.folds = std::min(std::max(2, options.folds), problem.groups);
   for (int g = 0; g < problem.groups; ++g) problem.fold_of_group.push_back(g % problem.folds);
-  if (options.recalibrate_base) problem.refit = {diagnosis::BaseRecalibrationTerm(model)};
+  diagnosis::SetRecalibration(model, options.recalibrate_base, &problem);
   std::vector<Term> fixed;
   out.fitted = diagnosis::FitAdded(problem, model, added, &fixed);
   out.samples = problem.samples.size();
   out.segments = problem.groups;
   out.rms_given_mm = diagnosis::TipRmsMm(problem, diagnosis::CrossValidated(problem, model, {}, {}));
   out.rms_refit_mm =
-      diagnosis::TipRmsMm(problem, diagnosis::CrossValidated(problem, model, {}, problem.refit));
+      diagnosis::TipRmsMm(problem, diagnosis::CrossValidated(problem, model, {}, problem.added_refit));
   out.rms_with_effects_mm = diagnosis::TipRmsMm(
-      problem, diagnosis::CrossValidated(problem, model, {}, diagnosis::WithRefit(problem, added)));
+      problem,
+      diagnosis::CrossValidated(problem, model, {}, diagnosis::WithAddedRefit(problem, added)));
   return out;
 }
 

@@ -79,5 +79,49 @@ TEST(WithFittedEffects, PropagatesTheRefitAndAppendsTheEffectToTheCovariance) {
   EXPECT_TRUE(cov.matrix.isApprox(cov.matrix.transpose()));
 }
 
+// A refit with a depth tilt u1 = 0.05 on joint 1 (inverse cubic): the file's
+// law is 1/K' = (1/K − u·x/K_mid)/(1 + s), x = (L − L_mid)/half over the
+// depth range, exactly, and its c1, c0 carry u's variance.
+TEST(WithFittedEffects, WritesTheDepthTiltInTheLawsOwnForm) {
+  models::ModelParameters p = models::testing::PaperParameters();
+  const auto& joint = p.joints[0];
+  ASSERT_EQ(joint.compliance.form, models::ComplianceForm::kInverseCubic);
+  const double middle = 0.5 * (joint.depth_min_m + joint.depth_max_m);
+  const double half = 0.5 * (joint.depth_max_m - joint.depth_min_m);
+  const double k_middle = models::ComplianceAt(joint, middle);
+  models::ParameterCovariance old;
+  old.names = {"joint1.compliance.c1", "joint1.compliance.c0"};
+  old.matrix = Eigen::MatrixXd::Zero(2, 2);
+  p.covariance = old;
+
+  FittedEffects fitted;
+  fitted.recalibration = Finding("base_recalibration", {"s1", "s2", "d1", "d2", "u1", "u2"},
+                                 {0.1, 0.0, 0.0, 0.0, 0.05, 0.0}, {0.0, 0.0, 0.0, 0.0, 0.01, 0.0});
+  fitted.effects = {Finding("deflection_coupling", {"k12", "k21"}, {0.006, 0.004}, {3e-5, 2e-5})};
+  Eigen::MatrixXd sigma = Eigen::MatrixXd::Zero(8, 8);
+  sigma(4, 4) = 1e-4;  // var u1
+  sigma(6, 6) = 9e-10, sigma(7, 7) = 4e-10;
+  fitted.covariance = sigma;
+
+  const auto out = WithFittedEffects(p, fitted, "a test");
+  for (double depth : {joint.depth_min_m, 0.13, middle, 0.2, joint.depth_max_m}) {
+    const double k = models::ComplianceAt(joint, depth);
+    const double x = (depth - middle) / half;
+    const double expected = 1.1 / (1.0 / k - 0.05 * x / k_middle);
+    EXPECT_NEAR(models::ComplianceAt(out.joints[0], depth), expected, 1e-12 * expected) << depth;
+    EXPECT_NEAR(models::ComplianceAt(out.joints[1], depth), models::ComplianceAt(p.joints[1], depth),
+                1e-15) << depth;
+  }
+  ASSERT_TRUE(out.covariance);
+  const auto& cov = *out.covariance;
+  const auto c1 = IndexOf(cov, "joint1.compliance.c1"), c0 = IndexOf(cov, "joint1.compliance.c0");
+  ASSERT_TRUE(c1 >= 0 && c0 >= 0);
+  // c1' = (c1 − u/(K_mid·half))/1.1, c0' = (c0 + u·L_mid/(K_mid·half))/1.1.
+  const double g1 = -1.0 / (k_middle * half * 1.1), g0 = middle / (k_middle * half * 1.1);
+  EXPECT_NEAR(cov.matrix(c1, c1), g1 * g1 * 1e-4, 1e-9 * g1 * g1 * 1e-4);
+  EXPECT_NEAR(cov.matrix(c1, c0), g1 * g0 * 1e-4, 1e-9 * std::abs(g1 * g0 * 1e-4));
+  EXPECT_NEAR(cov.matrix(c0, c0), g0 * g0 * 1e-4, 1e-9 * g0 * g0 * 1e-4);
+}
+
 }  // namespace
 }  // namespace pliant::estimation
