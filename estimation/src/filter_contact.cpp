@@ -49,16 +49,6 @@ double ContactLogLikelihoodRatio(double contact_innovation, double contact_varia
   return std::clamp(l1 - l0 + held_log_evidence, -700.0, 700.0);
 }
 
-double ContactPosterior(double prior, double contact_innovation, double contact_variance,
-                        double free_residual, double free_variance, double free_dof,
-                        double held_log_evidence) {
-  const double ratio = ContactLogLikelihoodRatio(contact_innovation, contact_variance,
-                                                 free_residual, free_variance, free_dof,
-                                                 held_log_evidence);
-  const double prior_odds = std::log(prior) - std::log1p(-prior);
-  return 1.0 / (1.0 + std::exp(-std::clamp(prior_odds + ratio, -700.0, 700.0)));
-}
-
 // The mixture of the slab posterior N(x, P) (weight p) and the same Gaussian
 // conditioned on tau = 0 (weight 1 − p): with m = x_tau, g = P e_tau / P_tautau,
 //   x+ = x − (1 − p)·m·g,   P+ = P − (1 − p)·(P_tautau − p·m²)·g gᵀ,

@@ -71,11 +71,10 @@ struct ContactPrior {
   double continuing = 0.0;   // the share of it that is the last step's contact going on
 };
 ContactPrior MixContact(const FilterOptions& o, double probability, double dt);
-// The posterior probability of contact from the slab's innovation (and its
-// variance) and the no-contact residual (its scale², Student-t with free_dof
-// degrees of freedom, Gaussian when free_dof is infinite).
-// held_log_evidence: a further log-likelihood ratio for contact (QuasiStaticHeldEvidence).
-// log p(r | contact) − log p(r | free) + held_log_evidence, within ±700.
+// The evidence for contact from the slab's innovation (and its variance) and the
+// no-contact residual (its scale², Student-t with free_dof degrees of freedom,
+// Gaussian when free_dof is infinite): log p(r | contact) − log p(r | free) +
+// held_log_evidence (QuasiStaticHeldEvidence), within ±700.
 double ContactLogLikelihoodRatio(double contact_innovation, double contact_variance,
                                  double free_residual, double free_variance, double free_dof,
                                  double held_log_evidence);
@@ -85,9 +84,6 @@ struct PendingEffort {
   double residual = 0.0, variance = 0.0, moving = 0.0, rest = 0.0, arm_torque = 0.0;
   double log_likelihood_ratio = 0.0;
 };
-double ContactPosterior(double prior, double contact_innovation, double contact_variance,
-                        double free_residual, double free_variance, double free_dof,
-                        double held_log_evidence = 0.0);
 // The log-likelihood ratio, held against free, of a quasi-static log's two
 // consecutive poses at one depth: the change of the effort residual against
 // the encoder's change through s·K(L) (filter_contact.cpp).
