@@ -93,6 +93,10 @@ TopicFile ReadTopic(const std::string& path, bool measured) {
   return file;
 }
 
+double SecondsSinceFirst(const TopicFile& topic, std::size_t r) {
+  return static_cast<double>(topic.stamp_ns[r] - topic.stamp_ns.front()) / 1e9;
+}
+
 void CheckMeasured(const TopicFile& measured) {
   const detail::CsvText& csv = measured.csv;
   for (std::size_t r = 0; r < csv.rows.size(); ++r) {
@@ -113,6 +117,16 @@ void CheckMeasured(const TopicFile& measured) {
                        "header.stamp is not after the previous row's",
                        "the rows must be in time order, one per message: sort them by stamp and "
                        "remove repeated messages");
+    }
+    // t is a double counted from the first stamp: beyond 2^53 ns (104 days) two stamps a
+    // nanosecond apart round to the same t, and the log would stand still in time.
+    if (r > 0 && !(SecondsSinceFirst(measured, r) > SecondsSinceFirst(measured, r - 1))) {
+      throw InputError(csv.path, csv.rows[r].line,
+                       static_cast<std::size_t>(csv.Index("header.stamp.sec")) + 1,
+                       "header.stamp is " + detail::NumberText(SecondsSinceFirst(measured, r)) +
+                           " s after the first row's, too far for its nanoseconds to count",
+                       "one recording spans hours, not months: split the file where its stamps "
+                       "jump, or remove the stray row");
     }
   }
 }
@@ -186,7 +200,7 @@ Log ImportRos2Csv(const std::vector<std::string>& paths, const ImportOptions& op
   log.header = MakeHeader(measured, has_setpoint ? &setpoint : nullptr);
   for (std::size_t r = 0; r < measured.stamp_ns.size(); ++r) {
     const double* v = &measured.values[r * measured.stride];
-    const double t = static_cast<double>(measured.stamp_ns[r] - measured.stamp_ns.front()) / 1e9;
+    const double t = SecondsSinceFirst(measured, r);
     // t, q1 q2 q3, tau1 tau2 tau3, v1 v2 v3 (the file's order: position, effort, velocity)
     log.values.insert(log.values.end(), {t, v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8]});
     if (!has_setpoint) continue;

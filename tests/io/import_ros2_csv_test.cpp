@@ -101,6 +101,11 @@ TEST(ImportRos2Csv, BadFilesAreNamedAtTheirLine) {
       {kHeader + "10,5,0.1,0.2,120,0.3,0.4\n",
        ":2:5: 'position.2' = 120 is outside 0 to 0.3 — position.2 is the PSM insertion depth in "
        "metres: import a PSM's topic"},
+      {kHeader + "0,0,0.1,0.2,0.12,0.3,0.4\n100000000,0,0.1,0.2,0.12,0.3,0.4\n"
+                 "100000000,1,0.1,0.2,0.12,0.3,0.4\n",
+       ":4:1: header.stamp is 1e+08 s after the first row's, too far for its nanoseconds to "
+       "count — one recording spans hours, not months: split the file where its stamps jump, or "
+       "remove the stray row"},
   };
   for (const auto& [text, message] : cases) {
     const std::string path = dir.Write("measured_js.csv", text);
