@@ -131,10 +131,14 @@ void CheckMeasured(const TopicFile& measured) {
   }
 }
 
+// Decimal seconds, exact to the nanosecond; ROS 2's sec is signed, so a stamp may be
+// before 1970 (a clock never set): the sign applies to the whole number.
 std::string StampText(std::int64_t stamp_ns) {
-  std::string fraction = std::to_string(stamp_ns % 1000000000);
+  const std::uint64_t magnitude =
+      stamp_ns < 0 ? std::uint64_t(0) - std::uint64_t(stamp_ns) : std::uint64_t(stamp_ns);
+  std::string fraction = std::to_string(magnitude % 1000000000);
   fraction.insert(0, 9 - fraction.size(), '0');
-  return std::to_string(stamp_ns / 1000000000) + "." + fraction;
+  return (stamp_ns < 0 ? "-" : "") + std::to_string(magnitude / 1000000000) + "." + fraction;
 }
 
 LogHeader MakeHeader(const TopicFile& measured, const TopicFile* setpoint) {

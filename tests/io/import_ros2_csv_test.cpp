@@ -113,6 +113,18 @@ TEST(ImportRos2Csv, BadFilesAreNamedAtTheirLine) {
   }
 }
 
+// ROS 2's sec is an int32: a clock never set stamps before 1970, and t still counts from it.
+TEST(ImportRos2Csv, AStampBefore1970StartsTheLogAtItsExactTime) {
+  TempDirectory dir;
+  const std::string path = dir.Write("measured_js.csv",
+                                     kHeader +
+                                         "-718031600,120004117,0.1,0.2,0.12,0.3,0.4\n"
+                                         "-718031600,121004117,0.1,0.2,0.12,0.3,0.4\n");
+  const Log log = ImportRos2Csv({path}, {});
+  EXPECT_EQ(log.header.Metadata("start_time").rfind("-718031599.879995883 s", 0), 0u);
+  EXPECT_DOUBLE_EQ(log.Column("t")[1], 0.001);
+}
+
 TEST(ImportRos2Csv, TwoMeasuredFilesAreRefused) {
   EXPECT_EQ(ErrorOf({kMeasured, kMeasured}),
             kMeasured +
