@@ -24,9 +24,18 @@ std::vector<std::pair<std::string, double>> BiasGradient(const models::JointPara
     }
     g.emplace_back(prefix + "coefficients[" + std::to_string(i) + "]", sum / n);
   }
-  double depth = 0.0;
-  for (double l : rows.depth_m) depth += l - f.reference_depth_m;
+  double depth = 0.0, depth_cos = 0.0, depth_sin = 0.0;
+  for (std::size_t r = 0; r < rows.depth_m.size(); ++r) {
+    const double lever = rows.depth_m[r] - f.reference_depth_m;
+    depth += lever;
+    if (r < rows.angle_rad.size()) {
+      depth_cos += lever * std::cos(rows.angle_rad[r]);
+      depth_sin += lever * std::sin(rows.angle_rad[r]);
+    }
+  }
   g.emplace_back(prefix + "depth_slope_nm_per_m", depth / n);
+  g.emplace_back(prefix + "depth_harmonic_nm_per_m[0]", depth_cos / n);
+  g.emplace_back(prefix + "depth_harmonic_nm_per_m[1]", depth_sin / n);
   return g;
 }
 

@@ -30,9 +30,11 @@ models::BiasTorqueTable TableOrFlat(const models::JointParameters& joint) {
 int HarmonicsOf(const models::ModelParameters& p) {
   std::size_t size = 1;
   for (const auto& joint : p.joints) {
-    if (joint.bias_form == models::BiasForm::kFourier) {
-      size = std::max(size, joint.bias_fourier.coefficients.size());
-    }
+    if (joint.bias_form != models::BiasForm::kFourier) continue;
+    size = std::max(size, joint.bias_fourier.coefficients.size());
+    // Moving a depth harmonic to another reference depth shifts a1 and b1.
+    const auto& c = joint.bias_fourier.depth_harmonic_nm_per_m;
+    if (c[0] != 0.0 || c[1] != 0.0) size = std::max<std::size_t>(size, 3);
   }
   return int(size / 2);
 }
@@ -45,18 +47,23 @@ double ReferenceDepthOf(const models::ModelParameters& p) {
 }
 
 // Both joints' series padded to the same harmonic count (zeros cost nothing),
-// their depth terms moved to one reference depth by shifting a0.
+// their depth terms moved to one reference depth by shifting a0, a1 and b1.
 std::vector<double> FourierValues(const models::ModelParameters& p, int harmonics,
                                   double reference_depth_m) {
+  using Effect = models::BiasTorqueFourierEffect;
   std::vector<double> out;
   for (const auto& joint : p.joints) {
-    std::vector<double> c(2 * harmonics + 2, 0.0);
+    std::vector<double> c(std::size_t(Effect::ParameterCount(harmonics)), 0.0);
     if (joint.bias_form == models::BiasForm::kFourier) {
-      std::copy(joint.bias_fourier.coefficients.begin(), joint.bias_fourier.coefficients.end(),
-                c.begin());
       const auto& f = joint.bias_fourier;
-      c.back() = f.depth_slope_nm_per_m;
-      c[0] += f.depth_slope_nm_per_m * (reference_depth_m - f.reference_depth_m);
+      std::copy(f.coefficients.begin(), f.coefficients.end(), c.begin());
+      const double shift = reference_depth_m - f.reference_depth_m;
+      c[std::size_t(Effect::DepthSlopeIndex(harmonics))] = f.depth_slope_nm_per_m;
+      c[0] += f.depth_slope_nm_per_m * shift;
+      for (int i = 0; i < 2; ++i) {
+        c[std::size_t(Effect::DepthHarmonicIndex(harmonics) + i)] = f.depth_harmonic_nm_per_m[i];
+        if (harmonics > 0) c[std::size_t(1 + i)] += f.depth_harmonic_nm_per_m[i] * shift;
+      }
     }
     out.insert(out.end(), c.begin(), c.end());
   }

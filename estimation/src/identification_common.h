@@ -27,9 +27,13 @@ double NowSeconds();
 /// free-tip row measures it (a held tip cannot tell its slope from 1/K, nor
 /// its level from the tip angle), and delta when the tip is held but no
 /// tip_fixed segment loads the joint both ways. The smoother holds them at the prior mean and carries
-/// the prior's covariance into the others' (consider_covariance.h).
+/// the prior's covariance into the others' (consider_covariance.h). `depth_harmonic`
+/// (per joint, the bias's c1 and d1, set by HoldUndeterminedDepthHarmonic) is
+/// held at its prior mean without that, as a depth slope held by
+/// bias_depth_term = false is.
 struct UndeterminedParameters {
   std::array<bool, 2> bias{{false, false}}, backlash{{false, false}};
+  std::array<std::array<bool, 2>, 2> depth_harmonic{};
 };
 UndeterminedParameters FindUndetermined(const IdentificationData& data,
                                         const models::ModelParameters& bias,

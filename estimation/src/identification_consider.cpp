@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "pliant/estimation/parameter_query.h"
+#include "pliant/models/effects/bias_torque_fourier.h"
 
 namespace pliant::estimation::detail {
 namespace {
@@ -21,15 +22,20 @@ std::string Format(const char* format, double a, double b, double c, double d) {
 void HeldParameters(const UndeterminedParameters& held, const SmootherPrior& prior,
                     const JointSmootherOptions& options, std::vector<long>* indices,
                     std::vector<double>* prior_sd) {
-  const long nb = 2 * options.bias_harmonics + 2;
+  using Effect = models::BiasTorqueFourierEffect;
+  const int h = options.bias_harmonics, nb = Effect::ParameterCount(h);
   for (int j = 0; j < 2; ++j) {
     if (held.backlash[j]) indices->push_back(8 + j), prior_sd->push_back(prior.delta_sd[j]);
   }
   for (int j = 0; j < 2; ++j) {
     if (!held.bias[j]) continue;
-    const long used = options.bias_depth_term ? nb : nb - 1;  // else the slope is held at 0
-    for (long i = 0; i < used; ++i) {
-      indices->push_back(kFirstBias + j * nb + i);
+    for (int i = 0; i < nb; ++i) {
+      // Coordinates held outside the fit (the slope without bias_depth_term,
+      // an undetermined depth harmonic) are not carried.
+      if (i == Effect::DepthSlopeIndex(h) && !options.bias_depth_term) continue;
+      const int harmonic = i - Effect::DepthHarmonicIndex(h);
+      if (harmonic >= 0 && held.depth_harmonic[j][std::size_t(harmonic)]) continue;
+      indices->push_back(kFirstBias + long(j) * nb + i);
       prior_sd->push_back(prior.bias_sd[j][std::size_t(i)]);
     }
   }

@@ -79,7 +79,7 @@ struct EffortResidual {
 
   template <typename T>
   bool operator()(T const* const* blocks, T* residual) const {
-    T coefficients[2 * (2 * kMaxBiasHarmonics + 2)];
+    T coefficients[2 * models::BiasTorqueFourierEffect::ParameterCount(kMaxBiasHarmonics)];
     for (int i = 0; i < per_joint; ++i) {
       coefficients[joint * per_joint + i] = blocks[0][i];
       coefficients[(1 - joint) * per_joint + i] = T(0.0);
@@ -135,7 +135,7 @@ ceres::CostFunction* NewHeldFrictionAngleResidual(const IdentificationSample& sa
 ceres::CostFunction* NewEffortResidual(const IdentificationSample& sample, int joint,
                                        int harmonics, double reference_depth_m, double sd_nm,
                                        bool latent_torque) {
-  const int per_joint = 2 * harmonics + 2;
+  const int per_joint = models::BiasTorqueFourierEffect::ParameterCount(harmonics);
   auto* cost = new ceres::DynamicAutoDiffCostFunction<EffortResidual, 16>(new EffortResidual{
       models::BiasTorqueFourierEffect(harmonics, reference_depth_m), sample, joint, per_joint,
       latent_torque, 1.0 / sd_nm});

@@ -38,6 +38,9 @@ double ValueOf(const models::ModelParameters& p, const std::string& name) {
   if (field.rfind("bias_torque.coefficients[", 0) == 0) {
     return joint.bias_fourier.coefficients[std::stoul(field.substr(25))];
   }
+  if (field.rfind("bias_torque.depth_harmonic_nm_per_m[", 0) == 0) {
+    return joint.bias_fourier.depth_harmonic_nm_per_m[std::stoul(field.substr(36)) % 2];
+  }
   static const char* kCubic[4] = {"compliance.c3", "compliance.c2", "compliance.c1", "compliance.c0"};
   static const char* kBeam[4] = {"compliance.joint_compliance_rad_per_nm",
                                  "compliance.structure_compliance_rad_per_n",

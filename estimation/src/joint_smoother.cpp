@@ -97,11 +97,12 @@ IdentificationResult RunJointSmoother(const IdentificationData& data,
   paper_options.cannula_length_m = options.cannula_length_m;
   const IdentificationResult paper = RunPaperProcedure(data, prior, paper_options);
   const SmootherPrior smoother_prior = detail::MakePrior(prior, options);
-  SmootherState state = detail::MakeInitialState(data, smoother_prior, paper, options);
   // The paper's procedure's bias table is the measured tau0 when a sweep was
   // logged: the branch test then looks at the load, not at a wrong bias.
-  const detail::UndeterminedParameters held =
+  detail::UndeterminedParameters held =
       detail::FindUndetermined(data, paper.parameters, options.paper);
+  detail::HoldUndeterminedDepthHarmonic(data, smoother_prior, options, &held);
+  SmootherState state = detail::MakeInitialState(data, smoother_prior, paper, options, held);
   for (int j = 0; j < 2; ++j) {
     if (held.backlash[j]) state.delta_rad[j] = smoother_prior.delta_rad[j];
     if (held.bias[j]) state.bias[j] = smoother_prior.bias[j];

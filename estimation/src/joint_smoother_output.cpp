@@ -4,11 +4,11 @@
 #include <cstdio>
 #include <set>
 
-
 #include "branch_classifier.h"
 #include "identification_common.h"
 #include "identification_costs.h"
 #include "joint_smoother_setup.h"
+#include "pliant/models/effects/bias_torque_fourier.h"
 
 namespace pliant::estimation::detail {
 namespace {
@@ -94,15 +94,19 @@ void FillResult(const IdentificationData& data, const models::ModelParameters& p
                 const SmootherPrior& smoother_prior, const JointSmootherOptions& options,
                 SmootherState* state, const Eigen::MatrixXd* computed,
                 const std::array<bool, 2>& width_fitted, IdentificationResult* result) {
-  const int nb = 2 * options.bias_harmonics + 2;
+  using Effect = models::BiasTorqueFourierEffect;
+  const int h = options.bias_harmonics, nb = Effect::ParameterCount(h);
   std::vector<std::string> names;
   for (int j = 0; j < 2; ++j) for (const auto& n : LawNames(j, options.law)) names.push_back(n);
   for (int j = 0; j < 2; ++j) names.push_back("joint" + std::to_string(j + 1) + ".backlash_rad");
   for (int j = 0; j < 2; ++j) names.push_back("joint" + std::to_string(j + 1) + ".deadzone_width_nm");
   for (int j = 0; j < 2; ++j) {
     const std::string prefix = "joint" + std::to_string(j + 1) + ".bias_torque.";
-    for (int i = 0; i + 1 < nb; ++i) names.push_back(prefix + "coefficients[" + std::to_string(i) + "]");
+    for (int i = 0; i <= 2 * h; ++i)
+      names.push_back(prefix + "coefficients[" + std::to_string(i) + "]");
     names.push_back(prefix + "depth_slope_nm_per_m");
+    for (int i = 0; i < 2; ++i)
+      names.push_back(prefix + "depth_harmonic_nm_per_m[" + std::to_string(i) + "]");
   }
   const long n = long(names.size());
   Eigen::MatrixXd covariance = Eigen::MatrixXd::Zero(n, n);
@@ -143,8 +147,13 @@ void FillResult(const IdentificationData& data, const models::ModelParameters& p
     joint.backlash_rad = state->delta_rad[j];
     joint.deadzone_width_nm = std::exp(state->log_width[j]);
     joint.bias_form = models::BiasForm::kFourier;
-    joint.bias_fourier.coefficients.assign(state->bias[j].begin(), state->bias[j].end() - 1);
-    joint.bias_fourier.depth_slope_nm_per_m = state->bias[j].back();
+    const auto& bias = state->bias[j];
+    joint.bias_fourier.coefficients.assign(bias.begin(), bias.begin() + 2 * h + 1);
+    joint.bias_fourier.depth_slope_nm_per_m = bias[std::size_t(Effect::DepthSlopeIndex(h))];
+    for (int i = 0; i < 2; ++i) {
+      joint.bias_fourier.depth_harmonic_nm_per_m[i] =
+          bias[std::size_t(Effect::DepthHarmonicIndex(h) + i)];
+    }
     joint.bias_fourier.reference_depth_m = options.bias_reference_depth_m;
     for (const char* field : {"compliance", "backlash_rad", "deadzone_width_nm", "bias_torque"}) {
       joint.sources[field] = source;

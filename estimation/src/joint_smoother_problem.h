@@ -19,6 +19,7 @@
 #include "joint_smoother_sandwich.h"
 #include "joint_smoother_setup.h"
 #include "pliant/estimation/joint_smoother.h"
+#include "pliant/models/effects/bias_torque_fourier.h"
 
 namespace pliant::estimation::detail {
 
@@ -36,7 +37,6 @@ class SmootherProblem {
                   const UndeterminedParameters& held, SmootherState* state)
       : state_(state), held_(held), huber_(options.robust_loss_sd),
         beam_(options.law == models::ComplianceForm::kBeamSeries),
-        bias_depth_term_(options.bias_depth_term),
         estimate_width_(options.estimate_deadzone_width) {
     ceres::Problem::Options problem_options;
     problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
@@ -44,7 +44,8 @@ class SmootherProblem {
     ordering_ = std::make_shared<ceres::ParameterBlockOrdering>();
     const std::array<models::ComplianceForm, 2> forms{options.law, options.law};
     const bool beam = options.law == models::ComplianceForm::kBeamSeries;
-    const int h = options.bias_harmonics, nb = 2 * h + 2;
+    const int h = options.bias_harmonics;
+    const int nb = models::BiasTorqueFourierEffect::ParameterCount(h);
     LayOut(*state, nb);
     for (int j = 0; j < 2; ++j) {
       // The law in units of its prior sd (identification_costs.h says why).
@@ -67,8 +68,9 @@ class SmootherProblem {
       Global(width_[j], 1, &prior.log_width[j], &prior.log_width_sd[j]);
       problem_->SetParameterBlockConstant(width_[j]);
       Global(bias_[j], nb, prior.bias[j].data(), prior.bias_sd[j].data());
-      if (!options.bias_depth_term) {
-        problem_->SetManifold(bias_[j], new ceres::SubsetManifold(nb, {nb - 1}));
+      held_bias_[j] = HeldBiasCoordinates(h, options.bias_depth_term, held.depth_harmonic[j]);
+      if (!held_bias_[j].empty()) {
+        problem_->SetManifold(bias_[j], new ceres::SubsetManifold(nb, held_bias_[j]));
       }
       // What the logs cannot determine stays at its prior mean (GlobalCovariance
       // carries its prior sd into the others'): fitted, it would soak up
@@ -163,21 +165,23 @@ class SmootherProblem {
   std::vector<GlobalBlock> Layout() {
     std::vector<GlobalBlock> out;
     Eigen::Index at = 0;
-    auto add = [&](double* values, std::vector<double> scale, bool constant, int fixed_coordinate) {
+    auto add = [&](double* values, std::vector<double> scale, bool constant,
+                   const std::vector<int>& fixed) {
       GlobalBlock b{values, at, std::move(scale), {}};
       for (int i = 0; i < int(b.scale.size()) && !constant; ++i)
-        if (i != fixed_coordinate) b.free.push_back(i);
+        if (std::find(fixed.begin(), fixed.end(), i) == fixed.end()) b.free.push_back(i);
       at += Eigen::Index(b.scale.size());
       out.push_back(std::move(b));
     };
-    for (int j = 0; j < 2; ++j)
-      add(law_[j], {law_scale_[j].begin(), law_scale_[j].end()}, false, beam_ ? 3 : -1);
-    for (int j = 0; j < 2; ++j) add(delta_[j], {1.0}, held_.backlash[j], -1);
-    for (int j = 0; j < 2; ++j) add(width_[j], {1.0}, !estimate_width_, -1);
+    for (int j = 0; j < 2; ++j) {
+      add(law_[j], {law_scale_[j].begin(), law_scale_[j].end()}, false,
+          beam_ ? std::vector<int>{3} : std::vector<int>{});
+    }
+    for (int j = 0; j < 2; ++j) add(delta_[j], {1.0}, held_.backlash[j], {});
+    for (int j = 0; j < 2; ++j) add(width_[j], {1.0}, !estimate_width_, {});
     for (int j = 0; j < 2; ++j) {
       const int nb = int(state_->bias[j].size());
-      add(bias_[j], std::vector<double>(std::size_t(nb), 1.0), held_.bias[j],
-          bias_depth_term_ ? -1 : nb - 1);
+      add(bias_[j], std::vector<double>(std::size_t(nb), 1.0), held_.bias[j], held_bias_[j]);
     }
     return out;
   }
@@ -238,6 +242,18 @@ class SmootherProblem {
     sample_of_residual_.push_back(sample);
   }
 
+  // The bias coordinates held at their prior mean: the depth slope without
+  // bias_depth_term, the depth harmonic where the free-tip rows leave it open.
+  static std::vector<int> HeldBiasCoordinates(int harmonics, bool depth_term,
+                                              const std::array<bool, 2>& held_harmonic) {
+    using Effect = models::BiasTorqueFourierEffect;
+    std::vector<int> out;
+    if (!depth_term) out.push_back(Effect::DepthSlopeIndex(harmonics));
+    for (int i = 0; i < 2; ++i)
+      if (held_harmonic[i]) out.push_back(Effect::DepthHarmonicIndex(harmonics) + i);
+    return out;
+  }
+
   void Global(double* block, int n, const double* mean, const double* sd) {
     problem_->AddParameterBlock(block, n);
     Add(-1, Prior(mean, sd, n), nullptr, block);
@@ -285,7 +301,8 @@ class SmootherProblem {
   std::map<int, double*> tip_;
   std::array<std::array<double, 4>, 2> law_scale_{};
   ceres::HuberLoss huber_;
-  bool beam_, bias_depth_term_, estimate_width_;
+  std::array<std::vector<int>, 2> held_bias_;  // HeldBiasCoordinates per joint
+  bool beam_, estimate_width_;
   std::vector<ceres::ResidualBlockId> residuals_;
   std::vector<int> sample_of_residual_;  // −1: a prior
   std::unique_ptr<ceres::Problem> problem_;

@@ -12,13 +12,20 @@
 namespace pliant::estimation::detail {
 namespace {
 
-// Basis of the Fourier bias, in the order of its coefficients.
-Eigen::RowVectorXd BiasBasis(double q, double depth_m, const JointSmootherOptions& options) {
+using FourierEffect = models::BiasTorqueFourierEffect;
+
+// Basis of the Fourier bias, in the order of its coefficients; the depth
+// slope's and the depth harmonic's (c1, d1) columns are zero where they are held.
+Eigen::RowVectorXd BiasBasis(double q, double depth_m, const JointSmootherOptions& options,
+                             bool slope, std::array<bool, 2> harmonic) {
   const int h = options.bias_harmonics;
-  Eigen::RowVectorXd row(2 * h + 2);
+  const double lever = depth_m - options.bias_reference_depth_m;
+  Eigen::RowVectorXd row = Eigen::RowVectorXd::Zero(FourierEffect::ParameterCount(h));
   row[0] = 1.0;
   for (int k = 1; k <= h; ++k) row[2 * k - 1] = std::cos(k * q), row[2 * k] = std::sin(k * q);
-  row[2 * h + 1] = options.bias_depth_term ? depth_m - options.bias_reference_depth_m : 0.0;
+  if (slope) row[FourierEffect::DepthSlopeIndex(h)] = lever;
+  if (harmonic[0]) row[FourierEffect::DepthHarmonicIndex(h)] = lever * std::cos(q);
+  if (harmonic[1]) row[FourierEffect::DepthHarmonicIndex(h) + 1] = lever * std::sin(q);
   return row;
 }
 
@@ -56,16 +63,23 @@ SmootherPrior MakePrior(const models::ModelParameters& prior, const JointSmoothe
     out.delta_sd[j] = s * 0.004;  // the backlash effects' prior (models/src/effects.cpp)
     out.log_width[j] = std::log(joint.deadzone_width_nm);
     out.log_width_sd[j] = s * 1.0;  // a factor e either way
-    const auto bias_specs = models::BiasTorqueFourierEffect(options.bias_harmonics).Parameters();
-    const int n = 2 * options.bias_harmonics + 2;
-    out.bias[j].assign(n, 0.0);
-    out.bias_sd[j].resize(n);
+    const int h = options.bias_harmonics;
+    const auto bias_specs = FourierEffect(h).Parameters();
+    const int n = FourierEffect::ParameterCount(h);
+    out.bias[j].assign(std::size_t(n), 0.0);
+    out.bias_sd[j].resize(std::size_t(n));
     for (int i = 0; i < n; ++i) out.bias_sd[j][i] = s * bias_specs[i].prior_sd;
     if (joint.bias_form == models::BiasForm::kFourier) {
       const auto& f = joint.bias_fourier;
-      for (int i = 0; i < n - 1 && i < int(f.coefficients.size()); ++i) out.bias[j][i] = f.coefficients[i];
-      out.bias[j][n - 1] = f.depth_slope_nm_per_m;
-      out.bias[j][0] += f.depth_slope_nm_per_m * (options.bias_reference_depth_m - f.reference_depth_m);
+      for (int i = 0; i <= 2 * h && i < int(f.coefficients.size()); ++i)
+        out.bias[j][i] = f.coefficients[i];
+      const double shift = options.bias_reference_depth_m - f.reference_depth_m;
+      out.bias[j][FourierEffect::DepthSlopeIndex(h)] = f.depth_slope_nm_per_m;
+      out.bias[j][0] += f.depth_slope_nm_per_m * shift;
+      for (int i = 0; i < 2; ++i) {
+        out.bias[j][FourierEffect::DepthHarmonicIndex(h) + i] = f.depth_harmonic_nm_per_m[i];
+        if (h > 0) out.bias[j][1 + i] += f.depth_harmonic_nm_per_m[i] * shift;
+      }
     } else {
       double mean = 0.0;  // a table's mean level: the paper's files are nearly flat
       for (double t : joint.bias_torque.torque_nm) mean += t / double(joint.bias_torque.torque_nm.size());
@@ -78,12 +92,14 @@ SmootherPrior MakePrior(const models::ModelParameters& prior, const JointSmoothe
 double BiasOf(const SmootherState& state, int joint, const IdentificationSample& sample,
               const JointSmootherOptions& options) {
   const Eigen::Map<const Eigen::VectorXd> c(state.bias[joint].data(), long(state.bias[joint].size()));
-  return BiasBasis(sample.angle_rad[joint], sample.insertion_depth_m, options).dot(c);
+  return BiasBasis(sample.angle_rad[joint], sample.insertion_depth_m, options, true, {true, true})
+      .dot(c);
 }
 
 SmootherState MakeInitialState(const IdentificationData& data, const SmootherPrior& prior,
                                const IdentificationResult& paper,
-                               const JointSmootherOptions& options) {
+                               const JointSmootherOptions& options,
+                               const UndeterminedParameters& held) {
   SmootherState state;
   state.law = prior.law;
   state.delta_rad = prior.delta_rad;
@@ -107,7 +123,9 @@ SmootherState MakeInitialState(const IdentificationData& data, const SmootherPri
     std::vector<double> efforts;
     for (const auto& s : data.samples) {
       if (s.tip_fixed) continue;
-      rows.push_back(BiasBasis(s.angle_rad[j], s.insertion_depth_m, options));
+      rows.push_back(BiasBasis(s.angle_rad[j], s.insertion_depth_m, options,
+                               options.bias_depth_term,
+                               {!held.depth_harmonic[j][0], !held.depth_harmonic[j][1]}));
       efforts.push_back(s.effort_nm[j]);
     }
     const long n = long(state.bias[j].size());
@@ -117,6 +135,10 @@ SmootherState MakeInitialState(const IdentificationData& data, const SmootherPri
       for (std::size_t r = 0; r < rows.size(); ++r) X.row(long(r)) = rows[r], y[long(r)] = efforts[r];
       const Eigen::VectorXd c = X.colPivHouseholderQr().solve(y);
       for (long i = 0; i < n; ++i) state.bias[j][i] = c[i];
+      for (int i = 0; i < 2; ++i) {
+        const int at = FourierEffect::DepthHarmonicIndex(options.bias_harmonics) + i;
+        if (held.depth_harmonic[j][i]) state.bias[j][at] = prior.bias[j][at];
+      }
     }
   }
   // Latents: the load the effort shows, and the tip the encoders imply under it.
@@ -138,6 +160,31 @@ SmootherState MakeInitialState(const IdentificationData& data, const SmootherPri
     state.tip_rad[segment] = {Median(values[0]), Median(values[1])};
   }
   return state;
+}
+
+void HoldUndeterminedDepthHarmonic(const IdentificationData& data, const SmootherPrior& prior,
+                                   const JointSmootherOptions& options,
+                                   UndeterminedParameters* held) {
+  const int h = options.bias_harmonics, n = FourierEffect::ParameterCount(h);
+  const int at = FourierEffect::DepthHarmonicIndex(h);
+  for (int j = 0; j < 2; ++j) {
+    // The information of the free-tip rows plus the prior's, every bias
+    // coefficient free: the posterior sd of c1 and d1 says what the rows fix.
+    Eigen::MatrixXd information = Eigen::MatrixXd::Zero(n, n);
+    for (int i = 0; i < n; ++i) information(i, i) = 1.0 / std::pow(prior.bias_sd[j][i], 2);
+    for (const auto& s : data.samples) {
+      if (s.tip_fixed || !std::isfinite(s.angle_rad[j]) || !std::isfinite(s.effort_nm[j])) continue;
+      const Eigen::RowVectorXd x = BiasBasis(s.angle_rad[j], s.insertion_depth_m, options,
+                                             options.bias_depth_term, {true, true});
+      information += x.transpose() * x * (double(s.rows) / std::pow(options.effort_noise_nm, 2));
+    }
+    const Eigen::MatrixXd covariance = information.ldlt().solve(Eigen::MatrixXd::Identity(n, n));
+    for (int i = 0; i < 2; ++i) {
+      const double sd = std::sqrt(covariance(at + i, at + i));
+      held->depth_harmonic[j][i] = !options.bias_depth_harmonic || held->bias[j] ||
+                                   !(sd <= options.identified_fraction * prior.bias_sd[j][at + i]);
+    }
+  }
 }
 
 }  // namespace pliant::estimation::detail

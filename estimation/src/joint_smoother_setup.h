@@ -5,6 +5,7 @@
 #include <map>
 #include <vector>
 
+#include "identification_common.h"
 #include "pliant/estimation/identification.h"
 #include "pliant/estimation/joint_smoother.h"
 
@@ -14,7 +15,7 @@ namespace pliant::estimation::detail {
 struct SmootherState {
   std::array<std::array<double, 4>, 2> law{};
   std::array<double, 2> delta_rad{}, log_width{};
-  std::array<std::vector<double>, 2> bias;  ///< a0, a1, b1, …, depth slope
+  std::array<std::vector<double>, 2> bias;  ///< a0, a1, b1, …, depth slope, c1, d1
   std::map<int, std::array<double, 2>> tip_rad;  ///< per tip_fixed segment
   std::vector<std::array<double, 2>> tau_ext_nm;  ///< per sample
 };
@@ -42,7 +43,19 @@ SmootherPrior MakePrior(const models::ModelParameters& prior, const JointSmoothe
 /// bias by linear least squares on the free-tip samples.
 SmootherState MakeInitialState(const IdentificationData& data, const SmootherPrior& prior,
                                const IdentificationResult& paper,
-                               const JointSmootherOptions& options);
+                               const JointSmootherOptions& options,
+                               const UndeterminedParameters& held);
+
+/// Holds each of joint j's depth-harmonic coefficients (c1, d1) at its prior
+/// unless the free-tip rows determine it: its posterior sd from them (every
+/// other bias coefficient free, the rows at the starting effort noise) below
+/// `identified_fraction` of its prior sd. One sweep depth cannot tell
+/// (L − L_ref)·c1 from a1; sweeps at two depths that span the joint angle can;
+/// sweeps of a few degrees about q = 0 fix d1 (the depth's change of τ0's
+/// slope) but not c1 (cos q ≈ 1: the depth slope s).
+void HoldUndeterminedDepthHarmonic(const IdentificationData& data, const SmootherPrior& prior,
+                                   const JointSmootherOptions& options,
+                                   UndeterminedParameters* held);
 
 /// tau0 of joint j from the state's bias coefficients.
 double BiasOf(const SmootherState& state, int joint, const IdentificationSample& sample,

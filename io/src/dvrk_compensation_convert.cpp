@@ -109,8 +109,10 @@ DvrkCompensation ParametersToDvrk(const models::ModelParameters& parameters,
     }
     out.backlash_rad[j] = joint.backlash_rad;
     const auto& fourier = joint.bias_fourier;
-    const bool depth_linear = joint.bias_form == models::BiasForm::kFourier &&
-                              fourier.coefficients.size() == 1 && fourier.reference_depth_m == 0.0;
+    const bool depth_linear =
+        joint.bias_form == models::BiasForm::kFourier && fourier.coefficients.size() == 1 &&
+        fourier.reference_depth_m == 0.0 && fourier.depth_harmonic_nm_per_m[0] == 0.0 &&
+        fourier.depth_harmonic_nm_per_m[1] == 0.0;
     const double middle = 0.5 * (joint.depth_min_m + joint.depth_max_m);
     if (depth_linear && (j == 1 || fourier.depth_slope_nm_per_m == 0.0)) {
       // The component's own form: copied, so that dVRK -> pliant -> dVRK is exact.

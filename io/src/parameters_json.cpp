@@ -105,7 +105,8 @@ class Reader {
     }
     if (fourier) {
       Object(bias, at, {{"form", true}, {"coefficients", true}, {"depth_slope_nm_per_m", false},
-                        {"reference_depth_m", false}, {"source", false}});
+                        {"depth_harmonic_nm_per_m", false}, {"reference_depth_m", false},
+                        {"source", false}});
       joint.bias_form = models::BiasForm::kFourier;
       auto& f = joint.bias_fourier;
       f.coefficients = Numbers(bias.at("coefficients"), at + "/coefficients", 0,
@@ -113,6 +114,11 @@ class Reader {
       if (bias.contains("depth_slope_nm_per_m")) {
         f.depth_slope_nm_per_m =
             Number(bias.at("depth_slope_nm_per_m"), at + "/depth_slope_nm_per_m", "N·m/m");
+      }
+      if (bias.contains("depth_harmonic_nm_per_m")) {  // absent in older files: 0
+        const auto c1_d1 = Numbers(bias.at("depth_harmonic_nm_per_m"),
+                                   at + "/depth_harmonic_nm_per_m", 2, "c1, d1 in N·m/m");
+        f.depth_harmonic_nm_per_m = {c1_d1[0], c1_d1[1]};
       }
       if (bias.contains("reference_depth_m")) {
         f.reference_depth_m = Number(bias.at("reference_depth_m"), at + "/reference_depth_m", "m");

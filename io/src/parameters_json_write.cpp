@@ -25,10 +25,15 @@ nlohmann::ordered_json BiasJson(const JointParameters& joint) {
     return {{"angle_rad", joint.bias_torque.angle_rad}, {"torque_nm", joint.bias_torque.torque_nm}};
   }
   const auto& f = joint.bias_fourier;
-  return {{"form", "fourier"},
-          {"coefficients", f.coefficients},
-          {"depth_slope_nm_per_m", f.depth_slope_nm_per_m},
-          {"reference_depth_m", f.reference_depth_m}};
+  nlohmann::ordered_json out = {{"form", "fourier"},
+                                {"coefficients", f.coefficients},
+                                {"depth_slope_nm_per_m", f.depth_slope_nm_per_m}};
+  // Written only when nonzero, so that readers without the term still accept the file.
+  if (f.depth_harmonic_nm_per_m[0] != 0.0 || f.depth_harmonic_nm_per_m[1] != 0.0) {
+    out["depth_harmonic_nm_per_m"] = f.depth_harmonic_nm_per_m;
+  }
+  out["reference_depth_m"] = f.reference_depth_m;
+  return out;
 }
 
 nlohmann::ordered_json ComplianceJson(const JointParameters& joint) {

@@ -85,7 +85,8 @@ BiasTorqueFourierEffect::BiasTorqueFourierEffect(int harmonics, double reference
 
 std::vector<ParameterSpec> BiasTorqueFourierEffect::Parameters() const {
   // Prior: the counterbalance leaves a few tenths of a N·m (paper Fig. 4);
-  // the depth slope of the dVRK file is −0.24 N·m/m.
+  // the depth slope of the dVRK file is −0.24 N·m/m; the gravity moment's
+  // arm grows with depth by the instrument's weight, a few N·m per m at most.
   std::vector<ParameterSpec> specs;
   for (int j = 0; j < 2; ++j) {
     const std::string joint = JointName(j);
@@ -95,6 +96,8 @@ std::vector<ParameterSpec> BiasTorqueFourierEffect::Parameters() const {
       specs.push_back({"tau0_" + joint + "_b" + std::to_string(k), "N·m", 0.0, -3.316, 3.316, 0.5});
     }
     specs.push_back({"tau0_" + joint + "_depth_slope", "N·m/m", 0.0, -10.0, 10.0, 1.0});
+    specs.push_back({"tau0_" + joint + "_depth_c1", "N·m/m", 0.0, -10.0, 10.0, 1.0});
+    specs.push_back({"tau0_" + joint + "_depth_d1", "N·m/m", 0.0, -10.0, 10.0, 1.0});
   }
   return specs;
 }

@@ -14,6 +14,11 @@ std::string ValidateFourier(const BiasTorqueFourier& bias) {
   for (double v : bias.coefficients) {
     if (!std::isfinite(v)) return "bias_torque coefficients hold a value that is not finite";
   }
+  for (double v : bias.depth_harmonic_nm_per_m) {
+    if (!std::isfinite(v)) {
+      return "bias_torque depth_harmonic_nm_per_m holds a value that is not finite";
+    }
+  }
   if (!std::isfinite(bias.depth_slope_nm_per_m) || !(bias.reference_depth_m >= 0.0)) {
     return "bias_torque depth_slope_nm_per_m must be finite and reference_depth_m >= 0";
   }
@@ -154,7 +159,8 @@ double BiasTorqueAt(const JointParameters& joint, double angle_rad, double depth
   if (joint.bias_form == BiasForm::kFourier) {
     const auto& f = joint.bias_fourier;
     return EvaluateFourierBias(f.coefficients.data(), int(f.coefficients.size() / 2),
-                               f.depth_slope_nm_per_m, f.reference_depth_m, angle_rad, depth_m);
+                               f.depth_slope_nm_per_m, f.depth_harmonic_nm_per_m.data(),
+                               f.reference_depth_m, angle_rad, depth_m);
   }
   const auto& t = joint.bias_torque;
   if (t.angle_rad.size() == 1 || angle_rad <= t.angle_rad.front()) return t.torque_nm.front();

@@ -78,6 +78,32 @@ TEST(BiasTare, AFourierBiasMovesA0AndItsCovarianceFollows) {
   EXPECT_NEAR(BiasSdOver(p, 1, kRows), 0.003, 1e-12);
 }
 
+// The depth harmonic (L − L_ref)·(c1·cos q + d1·sin q): its σ enters tau0's
+// through the row means of (L − L_ref)·cos q and (L − L_ref)·sin q, and a
+// tare moves a0 by minus those times c1, d1.
+TEST(BiasTare, TheDepthHarmonicsCovarianceEntersTheBiasSd) {
+  auto p = FourierParameters();
+  p.joints[1].bias_fourier.depth_harmonic_nm_per_m = {0.4, -0.6};
+  models::ParameterCovariance c;
+  c.names = {"joint2.bias_torque.depth_harmonic_nm_per_m[0]",
+             "joint2.bias_torque.depth_harmonic_nm_per_m[1]"};
+  c.matrix.resize(2, 2);
+  c.matrix << 0.09, -0.02, -0.02, 0.16;
+  p.covariance = c;
+  Eigen::Vector2d g = Eigen::Vector2d::Zero();
+  for (int r = 0; r < 3; ++r) {
+    const double lever = kRows.depth_m[r] - 0.155;
+    g[0] += lever * std::cos(kRows.angle_rad[r]) / 3.0;
+    g[1] += lever * std::sin(kRows.angle_rad[r]) / 3.0;
+  }
+  EXPECT_NEAR(BiasSdOver(p, 1, kRows), std::sqrt(g.dot(c.matrix * g)), 1e-15);
+  TareBiasTorque(1, 0.0, 0.0, kRows, "tared on my.csv", &p);
+  const auto& tared = *p.covariance;
+  ASSERT_EQ(tared.names.size(), 3u);  // a0 added
+  EXPECT_NEAR(tared.matrix(2, 2), g.dot(c.matrix * g), 1e-15);
+  EXPECT_NEAR(BiasSdOver(p, 1, kRows), 0.0, 1e-12);
+}
+
 TEST(BiasTare, AFourierBiasWithoutCovarianceGetsA0sFromTheTare) {
   auto p = FourierParameters();
   p.covariance.reset();

@@ -46,6 +46,29 @@ TEST(Equation2, SubtractsTheBiasTorqueFirst) {
   EXPECT_NEAR(loaded.corrected_rad[0], -(0.008478 + 0.05 * 1.0), 1e-15);
 }
 
+// Fourier biases with depth harmonics and different reference depths: the
+// corrector puts both joints on one reference depth and one harmonic count
+// (joint 1 has only a0), and its tau_ext is tau − BiasTorqueAt at every pose.
+TEST(Equation2, SubtractsAFourierBiasWithItsDepthHarmonic) {
+  models::ModelParameters p = HandParameters();
+  p.joints[0].bias_form = p.joints[1].bias_form = models::BiasForm::kFourier;
+  p.joints[0].bias_fourier = {{0.12}, 0.3, 0.155, {0.4, -0.7}};
+  p.joints[1].bias_fourier = {{-0.05, 0.02, 0.11, 0.01, -0.004}, -0.24, 0.10, {-0.2, 0.5}};
+  const ComplianceCorrector deadzone(p, CorrectionModel::kDeadZone);
+  for (const Eigen::Vector3d q : {Eigen::Vector3d(0.3, -0.4, 0.09), Eigen::Vector3d(-0.8, 0.6, 0.21),
+                                  Eigen::Vector3d(1.2, 0.1, 0.155)}) {
+    const Eigen::Vector2d tau(0.5, -0.3);
+    const auto c = deadzone.Correct(q, tau);
+    for (int j = 0; j < 2; ++j) {
+      EXPECT_NEAR(c.external_torque_nm[j], tau[j] - models::BiasTorqueAt(p.joints[j], q[j], q[2]),
+                  1e-14);
+    }
+  }
+  // Joint 1 at q = 0.3, L = 0.21: 0.12 + 0.055·(0.3 + 0.4·cos 0.3 − 0.7·sin 0.3), by hand.
+  EXPECT_NEAR(deadzone.Correct({0.3, 0.0, 0.21}, {0.0, 0.0}).external_torque_nm[0],
+              -(0.12 + 0.055 * (0.3 + 0.4 * std::cos(0.3) - 0.7 * std::sin(0.3))), 1e-14);
+}
+
 TEST(Equation2, UsesThePapersKAtTheDepth) {
   const ComplianceCorrector paper(models::testing::PaperParameters(), CorrectionModel::kPaper);
   const auto c = paper.Correct({0.0, 0.0, 0.15}, {0.199 + 1.0, -0.0029145 - 1.0});

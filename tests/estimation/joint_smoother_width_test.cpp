@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "clamped_beam_log.h"
+#include "named_sd.h"
 #include "paper_parameters.h"
 #include "pliant/estimation/joint_smoother.h"
 #include "pliant/estimation/parameter_query.h"
@@ -25,12 +26,6 @@ IdentificationData CalibrationData(double take_up_nm) {
   IdentificationData data;
   AppendSamples(testing::MakeCalibrationLog(spec), "calibration.csv", {}, &data);
   return data;
-}
-
-double Sd(const models::ModelParameters& p, const std::string& name) {
-  const auto& names = p.covariance->names;
-  const auto k = long(std::find(names.begin(), names.end(), name) - names.begin());
-  return std::sqrt(p.covariance->matrix(k, k));
 }
 
 // Every Ceres solve of the report ended in CONVERGENCE, in fewer iterations
@@ -59,7 +54,7 @@ TEST(JointSmootherWidth, TheProfiledTakeUpCoversTheTruthOnASmoothClearance) {
   for (int j = 0; j < 2; ++j) {
     const std::string joint = "joint" + std::to_string(j + 1);
     const double w = r.parameters.joints[j].deadzone_width_nm;
-    const double w_sd = Sd(r.parameters, joint + ".deadzone_width_nm");
+    const double w_sd = testing::NamedSd(r.parameters, joint + ".deadzone_width_nm");
     std::printf("%s: w %.4f ± %.4f N·m (truth %.2f)\n", joint.c_str(), w, w_sd, take_up);
     EXPECT_LT(std::abs(w - take_up), 3.0 * w_sd);
     EXPECT_LT(w_sd, 0.2 * take_up);  // the logs determine it, not the prior

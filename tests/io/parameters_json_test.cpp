@@ -63,6 +63,7 @@ void ExpectEqual(const models::ModelParameters& a, const models::ModelParameters
     EXPECT_EQ(x.bias_fourier.coefficients, y.bias_fourier.coefficients);
     EXPECT_EQ(x.bias_fourier.depth_slope_nm_per_m, y.bias_fourier.depth_slope_nm_per_m);
     EXPECT_EQ(x.bias_fourier.reference_depth_m, y.bias_fourier.reference_depth_m);
+    EXPECT_EQ(x.bias_fourier.depth_harmonic_nm_per_m, y.bias_fourier.depth_harmonic_nm_per_m);
   }
   ASSERT_EQ(a.covariance.has_value(), b.covariance.has_value());
   if (a.covariance) {
@@ -128,15 +129,46 @@ TEST(ParametersJson, BeamSeriesLawAndFourierBiasRoundTrip) {
   models::ModelParameters p = ReadParameters(kPaperPath);
   p.joints[0].compliance = {ComplianceForm::kBeamSeries, {{0.031, 0.0043, 0.0, 0.025}}};
   p.joints[1].bias_form = models::BiasForm::kFourier;
-  p.joints[1].bias_fourier = {{0.03, -0.01, 0.12, 0.027, 0.0001}, -0.2405, 0.155};
+  p.joints[1].bias_fourier = {{0.03, -0.01, 0.12, 0.027, 0.0001}, -0.2405, 0.155, {0.21, -0.47}};
   p.joints[1].bias_torque = {};  // a Fourier bias has no table
   const std::string path = directory.File("identified.json");
   WriteParameters(path, p);
   const std::string text = ReadText(path);
+  EXPECT_NE(text.find("\"depth_harmonic_nm_per_m\": [\n        0.21,\n        -0.47"),
+            std::string::npos) << text;
   EXPECT_NE(text.find("\"form\": \"beam_series\""), std::string::npos) << text;
   EXPECT_NE(text.find("\"structure_compliance_rad_per_n\": 0.0043"), std::string::npos) << text;
   EXPECT_NE(text.find("\"form\": \"fourier\""), std::string::npos) << text;
   ExpectEqual(p, ReadParameters(path));
+}
+
+// A Fourier bias written before the depth harmonic existed: no
+// depth_harmonic_nm_per_m key. It reads as zero, and a file whose harmonic is
+// zero is written without the key, so that such older readers accept it.
+TEST(ParametersJson, AFourierBiasWithoutTheDepthHarmonicReadsItAsZero) {
+  const std::string table = "\"angle_rad\": [-1.588, 1.588],\n      \"torque_nm\": [0.199, 0.199],";
+  const std::string old_bias =
+      "\"form\": \"fourier\", \"coefficients\": [0.03, -0.01, 0.12], "
+      "\"depth_slope_nm_per_m\": -0.2405, \"reference_depth_m\": 0.155,";
+  const models::ModelParameters p = ParseParameters(
+      PaperWith(table, old_bias),
+      "old.json");
+  const auto& f = p.joints[0].bias_fourier;
+  ASSERT_EQ(p.joints[0].bias_form, models::BiasForm::kFourier);
+  EXPECT_EQ(f.depth_harmonic_nm_per_m, (std::array<double, 2>{0.0, 0.0}));
+  EXPECT_EQ(f.depth_slope_nm_per_m, -0.2405);
+  // tau0 is the old file's: a0 + a1·cos q + b1·sin q + s·(L − L_ref).
+  EXPECT_NEAR(models::BiasTorqueAt(p.joints[0], 0.4, 0.2),
+              0.03 - 0.01 * std::cos(0.4) + 0.12 * std::sin(0.4) - 0.2405 * 0.045, 1e-15);
+  TempDirectory directory;
+  WriteParameters(directory.File("again.json"), p);
+  EXPECT_EQ(ReadText(directory.File("again.json")).find("depth_harmonic"), std::string::npos);
+  const std::string one_number =
+      ErrorOf(PaperWith(table, old_bias + " \"depth_harmonic_nm_per_m\": [0.1],"));
+  EXPECT_NE(one_number.find("depth_harmonic_nm_per_m must be an array of c1, d1 in N·m/m, found 1 "
+                            "values"),
+            std::string::npos)
+      << one_number;
 }
 
 TEST(ParametersJson, BeamSeriesErrorsNameTheField) {

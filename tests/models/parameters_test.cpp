@@ -95,12 +95,18 @@ TEST(Parameters, BeamSeriesMustBeNonNegativeAndSomewherePositive) {
   EXPECT_EQ(ValidateParameters(p), "");
 }
 
-TEST(Parameters, FourierBiasIsEvaluatedWithItsDepthTerm) {
+TEST(Parameters, FourierBiasIsEvaluatedWithItsDepthTerms) {
   JointParameters joint = testing::PaperParameters().joints[1];
   joint.bias_form = BiasForm::kFourier;
-  joint.bias_fourier = {{0.03, 0.01, 0.12}, -0.2419, 0.155};
+  joint.bias_fourier = {{0.03, 0.01, 0.12}, -0.2419, 0.155, {0.3, -0.5}};
+  // (L − L_ref)·(s + c1·cos q + d1·sin q) at L − L_ref = 0.045 m.
   EXPECT_NEAR(BiasTorqueAt(joint, 0.3, 0.2),
-              0.03 + 0.01 * std::cos(0.3) + 0.12 * std::sin(0.3) - 0.2419 * 0.045, 1e-15);
+              0.03 + 0.01 * std::cos(0.3) + 0.12 * std::sin(0.3) +
+                  0.045 * (-0.2419 + 0.3 * std::cos(0.3) - 0.5 * std::sin(0.3)),
+              1e-15);
+  // At the reference depth the depth terms vanish whatever the angle.
+  EXPECT_NEAR(BiasTorqueAt(joint, 1.1, 0.155),
+              0.03 + 0.01 * std::cos(1.1) + 0.12 * std::sin(1.1), 1e-15);
   ModelParameters p = testing::PaperParameters();
   p.joints[1] = joint;
   EXPECT_EQ(ValidateParameters(p), "");

@@ -33,8 +33,12 @@ struct CalibrationLogSpec {
   double torque_limit_nm = 1.0;
   bool reversals = true;                     ///< false: push one way only
   bool bias_sweep = true;
+  std::vector<double> sweep_depths_m{0.10, 0.16, 0.22};  ///< depths of the bias sweep
   bool clamp = true;                         ///< false: no tip_fixed rows at all
   double take_up_nm = 0.0;                   ///< > 0: the dead zone's width w (else a hard wall)
+  /// B (N·m/m): joint 2's gravity harmonic grows with depth, B·L·sin q2 added
+  /// to TrueBias (the instrument's centre of mass moves out along the shaft).
+  double depth_gravity_nm_per_m = 0.0;
   unsigned seed = 1;
 };
 
@@ -54,12 +58,14 @@ inline io::Log MakeCalibrationLog(const CalibrationLogSpec& spec) {
   auto emit = [&](double q1, double q2, double depth, double load1, double load2, bool fixed) {
     log.values.insert(log.values.end(),
                       {t, q1, q2, depth, TrueBias(0, q1, depth) + load1 + noise(rng),
-                       TrueBias(1, q2, depth) + load2 + noise(rng), fixed ? 1.0 : 0.0,
+                       TrueBias(1, q2, depth) + spec.depth_gravity_nm_per_m * depth * std::sin(q2) +
+                           load2 + noise(rng),
+                       fixed ? 1.0 : 0.0,
                        double(segment)});
     t += 0.5;
   };
   if (spec.bias_sweep) {
-    for (double depth : {0.10, 0.16, 0.22}) {
+    for (double depth : spec.sweep_depths_m) {
       ++segment;
       for (int k = -18; k <= 18; ++k) emit(k * 5.0 * M_PI / 180.0, 0.0, depth, 0.0, 0.0, false);
       for (int k = -10; k <= 10; ++k) emit(0.0, k * 5.0 * M_PI / 180.0, depth, 0.0, 0.0, false);

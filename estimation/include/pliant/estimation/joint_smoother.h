@@ -33,6 +33,10 @@ struct JointSmootherOptions {
   models::ComplianceForm law = models::ComplianceForm::kInverseCubic;
   int bias_harmonics = 2;                  ///< Fourier terms of tau0(q) per joint
   bool bias_depth_term = true;             ///< tau0 linear in L (else its slope is held at 0)
+  /// true: the first harmonic's growth with depth (c1, d1) is fitted for each
+  /// joint whose free-tip rows determine it (sweeps at two or more depths
+  /// spanning the angle), held at the prior elsewhere; false: held everywhere.
+  bool bias_depth_harmonic = true;
   double bias_reference_depth_m = 0.155;
   /// Noise before the fit rescales it (per sample of one log row; a hold of n
   /// rows gets sd/√n). The encoder sd is the Classic PSM count / √12.

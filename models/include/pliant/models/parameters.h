@@ -52,13 +52,17 @@ struct BiasTorqueTable {
 };
 
 /// A smooth bias torque: a short Fourier series in the joint's own angle q
-/// plus a linear term in the insertion depth L (the instrument's weight moves
-/// along the shaft):
-///   tau0(q, L) = a0 + Σ_k [a_k·cos(k·q) + b_k·sin(k·q)] + s·(L − L_ref)
+/// plus terms in the insertion depth L. The instrument's centre of mass moves
+/// along the shaft as it is inserted, so both the level (s) and the gravity
+/// moment's first harmonic (its arm grows with L: c1, d1) change with depth:
+///   tau0(q, L) = a0 + Σ_k [a_k·cos(k·q) + b_k·sin(k·q)]
+///                + (L − L_ref)·(s + c1·cos q + d1·sin q)
 struct BiasTorqueFourier {
   std::vector<double> coefficients;  ///< a0, a1, b1, a2, b2, … (N·m); odd length
   double depth_slope_nm_per_m = 0.0;  ///< s
   double reference_depth_m = 0.155;   ///< L_ref, the middle of the paper's depth range
+  /// c1, d1 (N·m/m): the first harmonic's growth with depth (0 in files without it)
+  std::array<double, 2> depth_harmonic_nm_per_m{{0.0, 0.0}};
 };
 
 enum class BiasForm {
@@ -120,13 +124,17 @@ T EvaluateCompliance(ComplianceForm form, const T* coefficients, const T& depth_
 }
 
 /// tau0 (N·m) of a Fourier bias at joint angle q (rad) and depth L (m);
-/// `coefficients` as in BiasTorqueFourier, `harmonics` = (size − 1) / 2.
+/// `coefficients` as in BiasTorqueFourier, `harmonics` = (size − 1) / 2,
+/// `depth_harmonic_nm_per_m` points at c1, d1.
 template <typename T>
 T EvaluateFourierBias(const T* coefficients, int harmonics, const T& depth_slope_nm_per_m,
-                      double reference_depth_m, const T& angle_rad, const T& depth_m) {
+                      const T* depth_harmonic_nm_per_m, double reference_depth_m,
+                      const T& angle_rad, const T& depth_m) {
   using std::cos;
   using std::sin;
-  T sum = coefficients[0] + depth_slope_nm_per_m * (depth_m - reference_depth_m);
+  const T per_depth = depth_slope_nm_per_m + depth_harmonic_nm_per_m[0] * cos(angle_rad) +
+                      depth_harmonic_nm_per_m[1] * sin(angle_rad);
+  T sum = coefficients[0] + per_depth * (depth_m - reference_depth_m);
   for (int k = 1; k <= harmonics; ++k) {
     sum += coefficients[2 * k - 1] * cos(double(k) * angle_rad) +
            coefficients[2 * k] * sin(double(k) * angle_rad);

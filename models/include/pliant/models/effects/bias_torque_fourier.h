@@ -12,20 +12,24 @@
 
 namespace pliant::models {
 
-/// Each joint: tau0_j = a0 + Σ_k [a_k·cos(k·q_j) + b_k·sin(k·q_j)] + s_j·(L − L_ref)
-/// (N·m). Parameters per joint, joint 1's first: a0, a1, b1, …, a_n, b_n, s
-/// (2n + 2 numbers). The harmonic count and L_ref are configuration.
+/// Each joint: tau0_j = a0 + Σ_k [a_k·cos(k·q_j) + b_k·sin(k·q_j)]
+///                      + (L − L_ref)·(s_j + c1·cos q_j + d1·sin q_j)   (N·m).
+/// Parameters per joint, joint 1's first: a0, a1, b1, …, a_n, b_n, s, c1, d1
+/// (2n + 4 numbers). The harmonic count and L_ref are configuration.
 class BiasTorqueFourierEffect {
  public:
   static constexpr EffectInfo kInfo{
       "bias_torque_fourier", Channel::kInternalTorque,
-      "effort spent against counterbalance and gravity, smooth in the joint angle, linear in "
-      "depth"};
+      "effort spent against counterbalance and gravity, smooth in the joint angle; its level "
+      "and its first harmonic grow linearly with depth"};
 
   explicit BiasTorqueFourierEffect(int harmonics = 2, double reference_depth_m = 0.155);
 
-  /// Parameters per joint.
-  int JointParameterCount() const { return 2 * harmonics_ + 2; }
+  /// Parameters per joint, and where the depth terms sit among them.
+  static constexpr int ParameterCount(int harmonics) { return 2 * harmonics + 4; }
+  static constexpr int DepthSlopeIndex(int harmonics) { return 2 * harmonics + 1; }
+  static constexpr int DepthHarmonicIndex(int harmonics) { return 2 * harmonics + 2; }
+  int JointParameterCount() const { return ParameterCount(harmonics_); }
   std::vector<ParameterSpec> Parameters() const;
 
   template <typename T>
@@ -34,7 +38,8 @@ class BiasTorqueFourierEffect {
     Vec2<T> out;
     for (int j = 0; j < 2; ++j) {
       const T* c = p + j * n;
-      out[j] = EvaluateFourierBias(c, harmonics_, c[n - 1], reference_depth_m_,
+      out[j] = EvaluateFourierBias(c, harmonics_, c[DepthSlopeIndex(harmonics_)],
+                                   c + DepthHarmonicIndex(harmonics_), reference_depth_m_,
                                    state.encoder_angle_rad[j], state.insertion_depth_m);
     }
     return out;
