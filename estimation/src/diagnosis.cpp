@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <set>
 
 #include "diagnosis_internal.h"
@@ -80,12 +81,14 @@ void AddFilterNis(const io::Log& log, const models::ModelParameters& parameters,
   s.nis_band[0] = band[0], s.nis_band[1] = band[1];
 }
 
-// A candidate alone as an extension of the model: held-out reduction, the
-// segment-block test of its held-out gain, and the fit on every row.
-diagnosis::CandidateFit Evaluate(const Problem& problem, const diagnosis::BaseModel& model,
-                                 const std::vector<Term>& fixed, const Term& candidate,
-                                 const Residual& before, const Residual& heldout_before,
-                                 double rms_before_mm) {
+}  // namespace
+
+namespace diagnosis {
+
+CandidateFit EvaluateCandidate(const Problem& problem, const BaseModel& model,
+                               const std::vector<Term>& fixed, const Term& candidate,
+                               const Residual& before, const Residual& heldout_before,
+                               double rms_before_mm) {
   // `before`: the residual of the baseline (the fixed terms and the refit
   // alone, fitted on every row), which the size is measured from.
   EffectFinding f;
@@ -142,6 +145,10 @@ diagnosis::CandidateFit Evaluate(const Problem& problem, const diagnosis::BaseMo
   return {f, fitted, refit};
 }
 
+}  // namespace diagnosis
+
+namespace {
+
 // A caution for a channel whose lag or nature can mislead a reader.
 std::string ChannelRemark(const ChannelFinding& c, int max_lag) {
   if (c.name == "t")
@@ -154,6 +161,37 @@ std::string ChannelRemark(const ChannelFinding& c, int max_lag) {
     return "the best lag is at the edge of the ±" + std::to_string(max_lag) +
            " sample window: the true lag may be longer (try a larger --max-lag)";
   return "";
+}
+
+// The probe compares the deflection candidates on the rows compared here and
+// on the loads inside the take-up, against the base with its take-up refitted:
+// its verdict on them replaces the one that took the wide take-up as right
+// (their terms here are kept, for the residual series). Those it calls
+// missing come first.
+void TakeProbeFindings(const diagnosis::TakeUpProbe& probe,
+                       std::vector<diagnosis::CandidateFit>& candidates,
+                       std::vector<std::string>* selected) {
+  std::vector<diagnosis::CandidateFit> found, rest;
+  for (auto& c : candidates) {
+    const auto it = std::find_if(probe.candidates.begin(), probe.candidates.end(),
+                                 [&](const auto& p) { return p.finding.name == c.finding.name; });
+    if (it != probe.candidates.end()) {
+      c.finding = it->finding;
+      c.finding.description += " (compared on the loads inside the parameters' wide take-up, "
+                               "with the take-up refitted: see the notes)";
+      selected->erase(std::remove(selected->begin(), selected->end(), c.finding.name),
+                      selected->end());
+    }
+    (it != probe.candidates.end() && c.finding.missing ? found : rest).push_back(std::move(c));
+  }
+  std::stable_sort(found.begin(), found.end(),
+                   [](const auto& a, const auto& b) { return a.finding.score > b.finding.score; });
+  std::stable_partition(rest.begin(), rest.end(), [](const auto& c) { return c.finding.missing; });
+  for (auto it = found.rbegin(); it != found.rend(); ++it)
+    selected->insert(selected->begin(), it->finding.name);
+  candidates = std::move(found);
+  candidates.insert(candidates.end(), std::make_move_iterator(rest.begin()),
+                    std::make_move_iterator(rest.end()));
 }
 
 }  // namespace
@@ -268,7 +306,8 @@ Diagnosis Diagnose(const io::Log& log, const std::string& log_path,
     const Term candidate = diagnosis::MakeTerm(name);
     if (candidate.parameters.empty()) continue;  // nothing to fit: no size, no test
     auto c =
-        Evaluate(problem, model, fixed, candidate, recalibrated, heldout_baseline, baseline_rms);
+        diagnosis::EvaluateCandidate(problem, model, fixed, candidate, recalibrated,
+                                     heldout_baseline, baseline_rms);
     c.finding.channels = diagnosis::ChannelsOf(*candidate.effect);
     candidates.push_back(std::move(c));
   }
@@ -281,6 +320,11 @@ Diagnosis Diagnose(const io::Log& log, const std::string& log_path,
     f.missing = f.p_value < options.family_significance && f.score >= options.min_heldout_reduction;
   }
   d.selected = diagnosis::RankBySeparation(problem, model, fixed, options, candidates);
+  if (added.empty() && options.probe_wide_take_up) {
+    auto probe = diagnosis::ProbeWideTakeUp(log, log_path, parameters, options, names);
+    d.notes.insert(d.notes.end(), probe.notes.begin(), probe.notes.end());
+    TakeProbeFindings(probe, candidates, &d.selected);
+  }
   for (const auto& c : candidates) d.effects.push_back(c.finding);
   for (const auto& f : d.effects) {
     if (f.missing) {
@@ -289,9 +333,15 @@ Diagnosis Diagnose(const io::Log& log, const std::string& log_path,
     }
   }
   if (added.empty() && !candidates.empty()) {
-    d.rms_after_mm = candidates.front().finding.heldout_rms_after_mm;
-    std::vector<Term> with = candidates.front().refit;
-    with.push_back(candidates.front().term);
+    const auto& best = candidates.front();
+    // A take-up probe's finding is scored on other rows: held out on these.
+    d.rms_after_mm = best.finding.heldout_rms_before_mm == baseline_rms
+                         ? best.finding.heldout_rms_after_mm
+                         : diagnosis::TipRmsMm(problem, diagnosis::CrossValidated(
+                                                            problem, model, fixed,
+                                                            diagnosis::WithRefit(problem, {best.term})));
+    std::vector<Term> with = best.refit;
+    with.push_back(best.term);
     after = diagnosis::Residuals(problem, model, with);
   } else if (added.empty()) {
     d.rms_after_mm = d.rms_before_mm;

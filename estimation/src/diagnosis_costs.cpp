@@ -151,7 +151,7 @@ class BaseRecalibration {
       "base_recalibration", models::Channel::kDeflection,
       "the model's compliance scaled by 1 + s_j and tilted in depth by u_j, and its clearance "
       "widened by d_j, refitted with every candidate"};
-  BaseRecalibration(const BaseModel& model, bool tilt) : model_(&model), tilt_(tilt) {
+  BaseRecalibration(const BaseModel& model, Recalibration kind) : model_(&model), kind_(kind) {
     for (int j = 0; j < 2; ++j) per_tilt_[j] = CompliancePerTilt(model.parameters().joints[j]);
   }
   std::vector<models::ParameterSpec> Parameters() const {
@@ -159,14 +159,33 @@ class BaseRecalibration {
                                                 {"compliance_share2", "", 0.0, -0.5, 0.5, 0.2},
                                                 {"clearance1", "rad", 0.0, -0.005, 0.005, 0.002},
                                                 {"clearance2", "rad", 0.0, -0.005, 0.005, 0.002}};
-    if (tilt_) {
+    if (kind_ != Recalibration::kScale) {
       specs.push_back({"compliance_tilt1", "", 0.0, -0.5, 0.5, 0.2});
       specs.push_back({"compliance_tilt2", "", 0.0, -0.5, 0.5, 0.2});
+    }
+    if (kind_ == Recalibration::kTakeUp || kind_ == Recalibration::kNarrowTakeUp) {
+      // A take-up that absorbed a stiffening read K low (and tilted in depth)
+      // and δ wide: the refit may undo all of it (δ down to 0, K up to 2.5×)
+      // and move the take-up width w by a factor e^l, its prior the
+      // identification's (a factor e) about the model's width, or about a
+      // clearance's (kNarrowTakeUp).
+      for (int j = 0; j < 2; ++j) {
+        specs[std::size_t(j)].upper_bound = 1.5;
+        specs[std::size_t(2 + j)].lower_bound = -model_->parameters().joints[j].backlash_rad;
+      }
+      for (int j = 0; j < 2; ++j) {
+        const double w = model_->clearance_load_nm(j);
+        const double narrow = std::min(0.0, std::log(NarrowTakeUpNm(model_->parameters().joints[j]) / w));
+        const double start = kind_ == Recalibration::kNarrowTakeUp ? narrow : 0.0;
+        specs.push_back({j == 0 ? "take_up1" : "take_up2", "", start,
+                         std::min(std::log(0.01 / w), narrow - 1.0), std::log(2.0), 1.0});
+      }
     }
     return specs;
   }
   template <typename T>
   models::Vec2<T> operator()(const T* p, const models::JointState<T>& state) const {
+    using std::exp;
     using std::tanh;
     models::Vec2<T> out;
     for (int j = 0; j < 2; ++j) {
@@ -176,20 +195,28 @@ class BaseRecalibration {
           std::clamp(ValueOf(state.insertion_depth_m), joint.depth_min_m, joint.depth_max_m);
       const double k = models::ComplianceAt(joint, depth);
       const double per_tilt = per_tilt_[j][2] * depth + per_tilt_[j][3];
-      const T u = tilt_ ? p[4 + j] : T(0.0);
+      const T u = kind_ != Recalibration::kScale ? p[4 + j] : T(0.0);
       const T tilted = joint.compliance.form == models::ComplianceForm::kInverseCubic
                            ? T(1.0) / (T(1.0 / k) + u * per_tilt)
                            : T(k) + u * per_tilt;
       const T& tau = state.external_torque_nm[j];
-      out[j] = ((T(1.0) + p[j]) * tilted - T(k)) * tau +
-               p[2 + j] * tanh(tau / T(model_->clearance_load_nm(j)));
+      out[j] = ((T(1.0) + p[j]) * tilted - T(k)) * tau;
+      const double w = model_->clearance_load_nm(j);
+      if (kind_ == Recalibration::kTakeUp || kind_ == Recalibration::kNarrowTakeUp) {
+        // The model's dead zone replaced by one of clearance δ + d_j and width w·e^l_j.
+        const double delta = joint.backlash_rad;
+        out[j] += (T(delta) + p[2 + j]) * models::SmoothSaturation(tau / (T(w) * exp(p[6 + j]))) -
+                  T(delta) * models::SmoothSaturation(tau / T(w));
+      } else {
+        out[j] += p[2 + j] * tanh(tau / T(w));
+      }
     }
     return out;
   }
 
  private:
   const BaseModel* model_;
-  bool tilt_;
+  Recalibration kind_;
   std::array<double, 4> per_tilt_[2];
 };
 
@@ -225,16 +252,16 @@ Eigen::MatrixXd ClusteredBySegment(const Problem& problem, const std::vector<std
 
 }  // namespace
 
-Term BaseRecalibrationTerm(const BaseModel& model, bool tilt) {
-  std::shared_ptr<const EffectModel> effect = MakeEffectModel(BaseRecalibration(model, tilt));
+Term BaseRecalibrationTerm(const BaseModel& model, Recalibration kind) {
+  std::shared_ptr<const EffectModel> effect = MakeEffectModel(BaseRecalibration(model, kind));
   return {effect, effect->DefaultParameters(), "base_recalibration"};
 }
 
 void SetRecalibration(const BaseModel& model, bool on, Problem* problem) {
   problem->refit.clear(), problem->added_refit.clear();
   if (!on) return;
-  problem->refit = {BaseRecalibrationTerm(model, false)};
-  problem->added_refit = {BaseRecalibrationTerm(model, true)};
+  problem->refit = {BaseRecalibrationTerm(model, Recalibration::kScale)};
+  problem->added_refit = {BaseRecalibrationTerm(model, Recalibration::kTilt)};
 }
 
 FitResult FitTerms(const Problem& problem, const BaseModel& model, const std::vector<Term>& fixed,

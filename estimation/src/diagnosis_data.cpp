@@ -89,7 +89,7 @@ BaseModel::BaseModel(const models::ModelParameters& parameters)
   for (int j = 0; j < 2; ++j) {
     deadzone_values_[j] = parameters.joints[j].backlash_rad;
     deadzone_values_[2 + j] = ClearanceLoad(parameters.joints[j]);
-    clearance_load_nm_[j] = deadzone_values_[2 + j];
+    clearance_load_nm_[j] = compared_load_nm_[j] = deadzone_values_[2 + j];
   }
 }
 
@@ -167,7 +167,7 @@ std::vector<Sample> CollectSamples(const io::Log& log, const io::StandardColumns
     for (int j = 0; j < 2; ++j) {
       s.used[j] = problem.joint_recorded[j] &&
                   std::abs(loaded.external_torque_nm[j]) >
-                      load_factor * model.clearance_load_nm(j) &&
+                      load_factor * model.compared_load_nm(j) &&
                   std::abs(effort[j]) < options.filter.effort_limit_nm;
     }
     if (!s.used[0] && !s.used[1]) continue;
@@ -247,8 +247,8 @@ Problem BuildProblem(const io::Log& log, const std::string& log_path, const Base
     throw io::InputError(log_path, 0, 0,
                          "no row of the log has the tip where the reference says and a load on "
                          "a recorded joint beyond half the cannula clearance's load (" +
-                             Format("%.3g", 0.5 * model.clearance_load_nm(0)) + " / " +
-                             Format("%.3g", 0.5 * model.clearance_load_nm(1)) + " N·m)",
+                             Format("%.3g", 0.5 * model.compared_load_nm(0)) + " / " +
+                             Format("%.3g", 0.5 * model.compared_load_nm(1)) + " N·m)",
                          "log pushes of the held tip (tip_fixed = 1) or a tracker reference "
                          "while the joints are loaded");
   }
@@ -256,8 +256,8 @@ Problem BuildProblem(const io::Log& log, const std::string& log_path, const Base
     problem.notes.push_back(
         "no push in this log reaches " + Format("%.3g", options.min_load_factor) +
         " × the load that takes up the cannula clearance (" +
-        Format("%.3g", options.min_load_factor * model.clearance_load_nm(0)) + " / " +
-        Format("%.3g", options.min_load_factor * model.clearance_load_nm(1)) +
+        Format("%.3g", options.min_load_factor * model.compared_load_nm(0)) + " / " +
+        Format("%.3g", options.min_load_factor * model.compared_load_nm(1)) +
         " N·m on joint 1 / 2): rows beyond " + Format("%.3g", factor) +
         " × are compared instead. There the shaft's place in the clearance still depends on "
         "its history, so the clearance and effects of the clearance (backlash_depth) cannot "
@@ -271,7 +271,7 @@ Problem BuildProblem(const io::Log& log, const std::string& log_path, const Base
     if (!problem.joint_recorded[j] || compared) continue;
     problem.notes.push_back(
         "joint " + std::to_string(j + 1) + " is not diagnosed: no row loads it beyond " +
-        Format("%.3g", factor * model.clearance_load_nm(j)) + " N·m (" + Format("%.3g", factor) +
+        Format("%.3g", factor * model.compared_load_nm(j)) + " N·m (" + Format("%.3g", factor) +
         " × the parameters' clearance load, the largest of its dead-zone width " +
         Format("%.3g", model.parameters().joints[j].deadzone_width_nm) + " N·m, tau_min and " +
         "0.05 N·m); push it further, or check a dead-zone width wider than the clearance's "

@@ -6,6 +6,7 @@
 //   diagnosis_costs.cpp       Ceres fit of effects as extensions of the model (the only
 //                             translation unit with Jets in a cost)
 //   diagnosis.cpp             the whole diagnosis
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <memory>
@@ -78,7 +79,12 @@ class BaseModel {
                            T(deadzone_values_[2]), T(deadzone_values_[3])};
     return compliance_(law.data(), state) + deadzone_(backlash, state);
   }
+  /// The width the model's dead zone takes the clearance up over (N·m).
   double clearance_load_nm(int joint) const { return clearance_load_nm_[joint]; }
+  /// The load a row's compared beyond (times DiagnoseOptions::min_load_factor):
+  /// the clearance load, unless the take-up probe narrows it.
+  double compared_load_nm(int joint) const { return compared_load_nm_[joint]; }
+  void set_compared_load_nm(int joint, double load_nm) { compared_load_nm_[joint] = load_nm; }
   const models::ModelParameters& parameters() const { return parameters_; }
 
  private:
@@ -88,6 +94,7 @@ class BaseModel {
   std::vector<double> compliance_values_;
   double deadzone_values_[4];
   double clearance_load_nm_[2];
+  double compared_load_nm_[2];
 };
 
 /// Encoder − reference − predicted deflection (rad) of one sample with
@@ -188,11 +195,23 @@ FitResult FitTerms(const Problem& problem, const BaseModel& model, const std::ve
                    const std::vector<Term>& fitted, const std::vector<bool>& train_group,
                    bool covariance, double size_factor, bool clustered = false);
 
+/// What the base model's recalibration frees: K's scale s_j and the
+/// clearance d_j (with each candidate); with K's depth tilt u_j as well (with
+/// the added effects); or with the tilt and the dead zone's take-up width,
+/// e^l_j times the model's (the take-up probe, diagnosis_take_up.cpp).
+/// (kNarrowTakeUp: the width starts at, and its prior is about, a clearance's
+/// take-up, NarrowTakeUpNm).
+enum class Recalibration { kScale, kTilt, kTakeUp, kNarrowTakeUp };
+/// The load a cannula clearance is taken up over, the width an identification
+/// starts from: the parameters' tau_min, at least 0.05 N·m.
+inline double NarrowTakeUpNm(const models::JointParameters& joint) {
+  return std::max(joint.tau_min_nm, 0.05);
+}
 /// The base model's compliance share and clearance as a term to refit with
-/// each candidate (DiagnoseOptions::recalibrate_base), with `tilt` K's depth
-/// tilt as well (with the added effects); `model` must outlive it. Its
-/// parameters: s1, s2, d1, d2, then with `tilt` u1, u2.
-Term BaseRecalibrationTerm(const BaseModel& model, bool tilt);
+/// each candidate (DiagnoseOptions::recalibrate_base); `model` must outlive
+/// it. Its parameters: s1, s2, d1, d2, then u1, u2 (all but kScale), then
+/// l1, l2 (the take-up kinds).
+Term BaseRecalibrationTerm(const BaseModel& model, Recalibration kind);
 /// Problem::refit and Problem::added_refit of the base model, or none.
 void SetRecalibration(const BaseModel& model, bool on, Problem* problem);
 
@@ -241,6 +260,17 @@ struct CandidateFit {
   std::vector<Term> refit;  ///< Problem::refit as fitted with it
 };
 
+/// A candidate alone as an extension of the model (fixed terms in, the
+/// problem's refit freed with it): its held-out reduction against
+/// `heldout_before` (RMS `rms_before_mm`), the segment-block test of the gain
+/// (unadjusted), and its fit on every row; `before` is the baseline's
+/// residual, which the size is measured from.
+CandidateFit EvaluateCandidate(const Problem& problem, const BaseModel& model,
+                               const std::vector<Term>& fixed, const Term& candidate,
+                               const std::vector<Eigen::Vector2d>& before,
+                               const std::vector<Eigen::Vector2d>& heldout_before,
+                               double rms_before_mm);
+
 /// `problem.refit` followed by `terms`: what a fit with these terms frees.
 std::vector<Term> WithRefit(const Problem& problem, const std::vector<Term>& terms);
 /// `problem.added_refit` followed by the added effects.
@@ -266,6 +296,23 @@ double RmsDifferenceMm(const Problem& problem, const std::vector<Eigen::Vector2d
 /// effects' predictions differ most, in words with both predictions.
 std::string SeparatingExperiment(const Problem& problem, const BaseModel& model,
                                  const std::vector<Term>& fixed, const Term& a, const Term& b);
+
+// --- the take-up probe (diagnosis_take_up.cpp) -----------------------------------
+struct TakeUpProbe {
+  /// Deflection candidates compared on the loads from twice tau_min, each with
+  /// the base's K scale, δ and take-up width refitted, against that refit
+  /// alone; best first, p Holm-adjusted, `missing` set. Empty when no joint's
+  /// take-up is wide.
+  std::vector<CandidateFit> candidates;
+  std::vector<std::string> notes;  ///< what was compared and found, in words
+};
+/// Runs when a recorded joint's dead-zone width exceeds e × max(tau_min,
+/// 0.05 N·m) (the identification's prior on log w has sd 1): such a take-up
+/// may be a concave load-deflection curve absorbed. Say when the log cannot
+/// tell the two apart, with the push that would.
+TakeUpProbe ProbeWideTakeUp(const io::Log& log, const std::string& log_path,
+                            const models::ModelParameters& parameters,
+                            const DiagnoseOptions& options, const std::vector<std::string>& names);
 
 // --- channels ------------------------------------------------------------------
 std::vector<ChannelFinding> RankChannels(const io::Log& log, const Problem& problem,

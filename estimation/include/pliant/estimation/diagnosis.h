@@ -59,6 +59,11 @@ struct DiagnoseOptions {
   /// against): an identification that absorbed part of the effect then no
   /// longer hides it, and no candidate wins by correcting K or δ alone.
   bool recalibrate_base = true;
+  /// When the parameters take the clearance up over a load wider than e ×
+  /// tau_min (an identification can read a stiffening so), also compare the
+  /// deflection candidates on the loads inside that take-up, with its width,
+  /// δ and K's scale refitted (docs/diagnose-method.md). Off with --add.
+  bool probe_wide_take_up = true;
   /// RMS errors are of the residual averaged over windows this long (s):
   /// the model's error, with the sensors' white noise averaged out. 0: per sample.
   double rms_window_s = 0.05;
