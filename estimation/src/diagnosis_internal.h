@@ -5,6 +5,7 @@
 //   diagnosis_channels.cpp    where the residual comes from (channels × lags)
 //   diagnosis_costs.cpp       Ceres fit of effects as extensions of the model (the only
 //                             translation unit with Jets in a cost)
+//   diagnosis_take_up.cpp     the loads inside a wide take-up, the take-up refitted
 //   diagnosis.cpp             the whole diagnosis
 #include <algorithm>
 #include <array>

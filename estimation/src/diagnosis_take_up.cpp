@@ -180,6 +180,7 @@ TakeUpProbe ProbeWideTakeUp(const io::Log& log, const std::string& log_path,
     EffectFinding& f = probe.candidates[i].finding;
     f.p_value = p[i];
     f.missing = f.p_value < options.family_significance && f.score >= options.min_heldout_reduction;
+    f.unique_score = f.score;  // the probe compares each with the take-up alone, not in pairs
   }
   std::stable_sort(probe.candidates.begin(), probe.candidates.end(),
                    [](const auto& a, const auto& b) { return a.finding.score > b.finding.score; });
