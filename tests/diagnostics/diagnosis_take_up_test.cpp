@@ -126,6 +126,11 @@ double Cubic(const models::JointParameters& joint, double tau) {
 
 // Three depths, eight directions: 24 pushes of the held tip to 1 N·m.
 TEST(DiagnoseTakeUp, AStiffeningAbsorbedAsAWideTakeUpIsNamed) {
+#ifdef PLIANT_SANITIZE_BUILD
+  // 38 s in Release; under ASan the three tests here had run 25 min of CPU without
+  // finishing, which risks ctest's 1500 s limit. The two below drive the same probe.
+  GTEST_SKIP() << "skipped in the sanitizer build: the 24-push log's probe is too slow there";
+#endif
   const auto scenario = ShortDivot("{}", {"experiment.depths_m=[0.10,0.15,0.20]",
                                           "experiment.directions_deg=[0,45,90,135,180,225,270,315]"});
   const models::ModelParameters truth = ModelOf(scenario);
