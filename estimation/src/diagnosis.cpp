@@ -177,6 +177,7 @@ void TakeProbeFindings(const diagnosis::TakeUpProbe& probe,
                                  [&](const auto& p) { return p.finding.name == c.finding.name; });
     if (it != probe.candidates.end()) {
       c.finding = it->finding;
+      c.scored_on_probe_rows = true;
       c.finding.description += " (compared on the loads inside the parameters' wide take-up, "
                                "with the take-up refitted: see the notes)";
       selected->erase(std::remove(selected->begin(), selected->end(), c.finding.name),
@@ -335,7 +336,7 @@ Diagnosis Diagnose(const io::Log& log, const std::string& log_path,
   if (added.empty() && !candidates.empty()) {
     const auto& best = candidates.front();
     // A take-up probe's finding is scored on other rows: held out on these.
-    d.rms_after_mm = best.finding.heldout_rms_before_mm == baseline_rms
+    d.rms_after_mm = !best.scored_on_probe_rows
                          ? best.finding.heldout_rms_after_mm
                          : diagnosis::TipRmsMm(problem, diagnosis::CrossValidated(
                                                             problem, model, fixed,

@@ -259,6 +259,9 @@ struct CandidateFit {
   EffectFinding finding;  ///< score, p_value (adjusted) and missing already set
   Term term;
   std::vector<Term> refit;  ///< Problem::refit as fitted with it
+  /// Scored on the take-up probe's rows (ProbeWideTakeUp), not on the log's
+  /// own held-out segments: its held-out RMS is not this log's.
+  bool scored_on_probe_rows = false;
 };
 
 /// A candidate alone as an extension of the model (fixed terms in, the
