@@ -227,14 +227,9 @@ void ComplianceFilter::Impl::UpdateEffort(const FilterSample& sample, int j, boo
     arm.SetMotion(options, motion[j].velocity_rad_s, motion[j].acceleration_rad_s2);
   }
   const double arm_torque = mixture ? arm.Torque() : 0.0;
-  // The bias table's error at rest (σ_rest) is no white noise: it changes
-  // only with the pose. It tells a contact's load from a free arm's residual
-  // (free_variance), but within a contact it is part of the load, as with
-  // the tip_fixed hint (HeldEffortVariance has none); as white noise on every
-  // row it made the load lag a push's ramp (docs/decisions/contact-prior.md).
   const double variance =
       sample.tip_fixed ? HeldEffortVariance(options, inertial_torque)
-      : mixture        ? noise + moving * unmodelled[j].variance + arm.Variance()
+      : mixture        ? rest + moving * unmodelled[j].variance + arm.Variance()
                        : noise;
   const FilterJointState& s = joint[j];
   const double residual =
@@ -247,8 +242,7 @@ void ComplianceFilter::Impl::UpdateEffort(const FilterSample& sample, int j, boo
     // (Scored against the slab's tracked load, a smooth internal torque looked
     // like a contact that is followed well: bag rows with p ≈ 0.9 at
     // residuals below σ_u.)
-    const double rest_sd = options.unmodelled_effort_sd_nm;
-    const double free_variance = s.covariance(kOffset, kOffset) + variance + rest_sd * rest_sd;
+    const double free_variance = s.covariance(kOffset, kOffset) + variance;
     const double sd_c = options.contact_load_sd_nm;
     // A moving arm's unmodelled torque is heavy-tailed (a spike of inertia or
     // stiction is not a contact); a settled arm's is the table's error and noise.
