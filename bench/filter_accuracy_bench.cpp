@@ -138,6 +138,11 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "%s has no q1_true, q2_true\n", log_path.c_str());
       return 2;
     }
+    // What the log lets the filter read, as `pliant filter` decides it.
+    std::vector<std::string> notes;
+    options = estimation::OptionsForLog(options, log.header,
+                                        estimation::MedianRowSpacing(log.Column("t")), &notes);
+    for (const auto& note : notes) std::fprintf(stderr, "note: %s\n", note.c_str());
     const auto speeds = SegmentSpeeds(log.header);
     const std::size_t rows = log.Rows(), cols = log.Columns();
     const estimation::ComplianceCorrector paper(parameters, estimation::CorrectionModel::kPaper);

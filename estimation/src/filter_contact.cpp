@@ -18,7 +18,7 @@ ContactPrior MixContact(const FilterOptions& o, double probability, double dt) {
   ContactPrior m;
   // A quasi-static log's t is a pose index, and no time passes in the chain
   // between two poses but one nominal period's: a contact goes on from pose
-  // to pose unless the rows say otherwise (QuasiStaticHeldEvidence).
+  // to pose unless the rows say otherwise (QuasiStaticTransitions).
   if (o.quasi_static) dt = o.sample_period_s;
   const double start = -std::expm1(-o.contact_start_rate_hz * dt);
   const double end = -std::expm1(-o.contact_end_rate_hz * dt);
@@ -64,34 +64,71 @@ void CollapseContact(FilterJointState* state, double probability) {
   P.noalias() -= ((1.0 - probability) * (p_tau - probability * m * m)) * (g * g.transpose());
 }
 
-// Two consecutive poses of one depth in a quasi-static log: a held shaft's
-// load follows the motor, r − r_prev = Δq/(s·K(L)) (the encoder's travel
-// bends the shaft against the wall that holds the tip), while a free arm's
-// effort residual stays where it was, r − r_prev = 0 (the bias table's error
-// changes little between two nearby poses; what changes, the held friction,
-// the model takes out under both). The log-likelihood ratio of the two:
-// what makes a small load in the middle of a push (a clamp's load passing
-// through zero) contact, and a free sweep's steps free. Both see two rows'
-// effort noise; the held one also the doubt of s and the clearance (which
-// the travel may cross instead of bending the shaft).
-double QuasiStaticHeldEvidence(const FilterOptions& o, double residual_change,
-                               double encoder_change, double scale_compliance,
-                               double scale_sd, double clearance_rad,
-                               double internal_torque_change) {
+// Two consecutive poses of one depth in a quasi-static log, r the effort
+// residual and h = Δq/(s·K(L)) the load the encoder's travel would add to a
+// held shaft. The chain moves between them in one of four ways, each with its
+// own law for this pose's residual given the last's:
+//   held    (contact → contact): r − r_prev = h, the shaft bent by the travel;
+//   free    (free → free):       r − r_prev = 0, the bias table's error stays
+//                                between two nearby poses;
+//   onset   (free → contact):    r − r_prev is a new load from the slab;
+//   release (contact → free):    r is the table's error alone, N(0, free).
+// What changes besides (the held friction) the model takes out under all.
+// Each sees two rows' effort noise; the held one also the doubt of s and of
+// the clearance, which the travel may cross instead of bending the shaft.
+// Only the onset and the release score the residual's size: a contact that
+// goes on is judged by whether its load follows the encoder, so a clamp's
+// load passing through zero stays a contact.
+PoseTransitions QuasiStaticTransitions(const FilterOptions& o, double residual,
+                                       double residual_change, double encoder_change,
+                                       double scale_compliance, double scale_sd,
+                                       double clearance_rad, double internal_torque_change,
+                                       double free_variance) {
+  PoseTransitions t;
   if (!(scale_compliance > 0.0) || !std::isfinite(residual_change) ||
-      !std::isfinite(encoder_change)) {
-    return 0.0;
+      !std::isfinite(encoder_change) || !std::isfinite(residual)) {
+    return t;
   }
-  const double held_change = encoder_change / scale_compliance;
+  constexpr double kLogTwoPi = 1.8378770664093453;
+  const auto log_normal = [](double x, double v) {
+    return -0.5 * (x * x / v + std::log(v) + kLogTwoPi);
+  };
+  const double h = encoder_change / scale_compliance;
   const double noise = 2.0 * o.effort_noise_nm * o.effort_noise_nm +
                        internal_torque_change * internal_torque_change;
   const double model = scale_sd * scale_sd + o.deflection_model_error * o.deflection_model_error;
-  const double crossing = clearance_rad / scale_compliance;
-  const double held_variance = noise + model * held_change * held_change + crossing * crossing;
-  const double miss = residual_change - held_change;
-  const double l_held = -0.5 * (miss * miss / held_variance + std::log(held_variance));
-  const double l_free = -0.5 * (residual_change * residual_change / noise + std::log(noise));
-  return l_held - l_free;
+  // The travel may cross the clearance instead of bending the shaft, but no
+  // more of it than there was: a still joint's load stays (no doubt from δ).
+  const double crossing = std::min(std::abs(encoder_change), clearance_rad) / scale_compliance;
+  const double sd_c = o.contact_load_sd_nm;
+  t.valid = true;
+  t.held = log_normal(residual_change - h, noise + model * h * h + crossing * crossing);
+  t.free = log_normal(residual_change, noise);
+  t.onset = log_normal(residual_change, noise + sd_c * sd_c);
+  t.release = log_normal(residual, free_variance);
+  return t;
+}
+
+double ContactAfterPosePair(const FilterOptions& o, double probability,
+                            const PoseTransitions& evidence) {
+  const double dt = o.sample_period_s;  // one nominal period per pose (MixContact)
+  const double start = -std::expm1(-o.contact_start_rate_hz * dt);
+  const double end = -std::expm1(-o.contact_end_rate_hz * dt);
+  const double p = std::clamp(probability, 0.0, 1.0);
+  // log(0) is −inf: a move the last pose rules out adds nothing.
+  const double to_contact[2] = {std::log(p) + std::log1p(-end) + evidence.held,
+                                std::log1p(-p) + std::log(start) + evidence.onset};
+  const double to_free[2] = {std::log(p) + std::log(end) + evidence.release,
+                             std::log1p(-p) + std::log1p(-start) + evidence.free};
+  const auto log_sum = [](const double (&x)[2]) {
+    const double top = std::max(x[0], x[1]);
+    if (!std::isfinite(top)) return top;
+    return top + std::log(std::exp(x[0] - top) + std::exp(x[1] - top));
+  };
+  const double contact = log_sum(to_contact), free = log_sum(to_free);
+  if (!std::isfinite(contact)) return 0.0;
+  if (!std::isfinite(free)) return 1.0;
+  return 1.0 / (1.0 + std::exp(std::clamp(free - contact, -700.0, 700.0)));
 }
 
 // 50 ms: the effort's noise through s·K(L) (≈ 0.5 mrad a sample at 0.01 N·m)

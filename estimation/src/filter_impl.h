@@ -74,24 +74,37 @@ ContactPrior MixContact(const FilterOptions& o, double probability, double dt);
 // The evidence for contact from the slab's innovation (and its variance) and the
 // no-contact residual (its scale², Student-t with free_dof degrees of freedom,
 // Gaussian when free_dof is infinite): log p(r | contact) − log p(r | free) +
-// held_log_evidence (QuasiStaticHeldEvidence), within ±700.
+// held_log_evidence (a pose pair's held − free, QuasiStaticTransitions), within ±700.
 double ContactLogLikelihoodRatio(double contact_innovation, double contact_variance,
                                  double free_residual, double free_variance, double free_dof,
                                  double held_log_evidence);
+// A quasi-static log's two consecutive poses at one depth: their
+// log-likelihoods under the four moves of the contact chain between them
+// (filter_contact.cpp, QuasiStaticTransitions). Invalid: no such pair.
+struct PoseTransitions {
+  bool valid = false;
+  double held = 0.0;     // contact → contact: the load followed the encoder
+  double onset = 0.0;    // free → contact: a new load beside the table's error
+  double release = 0.0;  // contact → free: the residual is the table's error
+  double free = 0.0;     // free → free: the table's error stayed
+};
+PoseTransitions QuasiStaticTransitions(const FilterOptions& o, double residual,
+                                       double residual_change, double encoder_change,
+                                       double scale_compliance, double scale_sd,
+                                       double clearance_rad, double internal_torque_change,
+                                       double free_variance);
+// P(contact) after a pose pair, from the last pose's posterior `probability`
+// and the four moves' log-likelihoods summed over the joints.
+double ContactAfterPosePair(const FilterOptions& o, double probability,
+                            const PoseTransitions& evidence);
 // An effort's update waiting for the shared contact probability (ShareContact).
 struct PendingEffort {
   bool update = false, mixture = false;
   double residual = 0.0, variance = 0.0, moving = 0.0, rest = 0.0, arm_torque = 0.0;
   double log_likelihood_ratio = 0.0;
+  PoseTransitions transitions;  // quasi-static logs only
 };
-// The log-likelihood ratio, held against free, of a quasi-static log's two
-// consecutive poses at one depth: the change of the effort residual against
-// the encoder's change through s·K(L) (filter_contact.cpp).
-double QuasiStaticHeldEvidence(const FilterOptions& o, double residual_change,
-                               double encoder_change, double scale_compliance,
-                               double scale_sd, double clearance_rad,
-                               double internal_torque_change);
-// A quasi-static log's last pose, per joint, for QuasiStaticHeldEvidence.
+// A quasi-static log's last pose, per joint, for QuasiStaticTransitions.
 struct LastPose {
   bool valid = false;
   double encoder_rad = 0.0;
@@ -197,7 +210,8 @@ struct ComplianceFilter::Impl {
   double ContactOnsetVariance(const FilterSample& sample, int j, double dt);
   void UpdateMeasurements(const FilterSample& sample, StepTally* tally);
   void UpdateEffort(const FilterSample& sample, int j, bool unloaded, StepTally* tally);
-  double PoseChangeEvidence(const FilterSample& sample, int j, double residual);
+  filter_internal::PoseTransitions PoseChangeEvidence(const FilterSample& sample, int j, double residual,
+                                     double free_variance);
   void Reinitialise(int j, const FilterSample& sample, bool held_tip_stays);
   double FreeSpeed(int j, const FilterSample& sample, double effort_less_bias);
   void ShareContact();

@@ -2,17 +2,22 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <limits>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include "pliant/estimation/filter_smoother.h"
+#include "pliant/io/log_reader.h"
 #include "pliant/io/log_writer.h"
 #include "scratch_file.h"
 #include "smoothed_pass.h"
 
 namespace pliant::estimation {
 namespace {
+
+constexpr std::size_t kSpacingRows = 21;  // the rows whose spacing decides
 
 double Optional(const double* row, int column) {
   return column >= 0 ? row[column] : std::numeric_limits<double>::quiet_NaN();
@@ -47,24 +52,19 @@ struct OutputColumns {
   bool recorded[2] = {true, true};  // an unrecorded joint's columns are empty
 };
 
-// The log's header decides what the filter may read from it: which joints it
-// records, and whether its time is only a pose index (docs/filter.md).
-FilterOptions OptionsForLog(FilterOptions options, const io::LogHeader& header,
-                            LogFilterSummary* summary) {
-  options.quasi_static = options.quasi_static || header.QuasiStatic();
-  if (options.quasi_static) {
-    summary->notes.push_back("quasi-static log: each row filtered as a static measurement (t read "
-                             "as a pose index only; a contact may go on from pose to pose)");
+// MedianRowSpacing over a log file's first rows (NaN for standard input,
+// which cannot be read twice).
+double MedianRowSpacingOf(const std::string& path, const io::LogReaderOptions& read_options) {
+  if (path == "-") return std::numeric_limits<double>::quiet_NaN();
+  io::LogReader reader(path, read_options);
+  const io::StandardColumns in(reader.header());
+  std::vector<double> times;
+  while (times.size() < kSpacingRows) {
+    const double* row = reader.Next();
+    if (row == nullptr) break;
+    times.push_back(row[in.t]);
   }
-  for (int j = 0; j < 2; ++j) {
-    options.joint_recorded[j] = header.JointRecorded(j + 1);
-    if (!options.joint_recorded[j]) {
-      const std::string n = std::to_string(j + 1);
-      summary->notes.push_back("joint " + n + " not recorded: kept at its prior, q" + n +
-                               "_corr and q" + n + "_sd left empty");
-    }
-  }
-  return options;
+  return MedianRowSpacing(times);
 }
 
 std::string Note(const std::string& metadata_note, const LogFilterSummary& summary) {
@@ -145,7 +145,8 @@ LogFilterSummary SmoothLog(const std::string& input_path, const std::string& out
   io::LogHeader header = reader.header();
   const io::StandardColumns in(header);
   const std::size_t input_columns = header.columns.size();
-  const FilterOptions used = OptionsForLog(options, header, summary);
+  const FilterOptions used =
+      OptionsForLog(options, header, MedianRowSpacingOf(input_path, read_options), &summary->notes);
   OutputColumns out(header);
   out.recorded[0] = used.joint_recorded[0];
   out.recorded[1] = used.joint_recorded[1];
@@ -213,6 +214,49 @@ LogFilterSummary SmoothLog(const std::string& input_path, const std::string& out
 
 }  // namespace
 
+double MedianRowSpacing(const std::vector<double>& times_s) {
+  std::vector<double> steps;
+  for (std::size_t i = 1; i < std::min(times_s.size(), kSpacingRows); ++i) {
+    const double step = times_s[i] - times_s[i - 1];
+    if (std::isfinite(step)) steps.push_back(step);
+  }
+  if (steps.size() < 3) return std::numeric_limits<double>::quiet_NaN();
+  std::nth_element(steps.begin(), steps.begin() + steps.size() / 2, steps.end());
+  return steps[steps.size() / 2];
+}
+
+// A log marked quasi-static has rows that are poses; so has one whose rows lie further apart than a time gap
+// (a calibration's settled poses, hold means, a pose index for t): read as a
+// continuous log, each of its rows would be a gap that starts the tip and the
+// load again, and a clamp's load would be judged by its size alone.
+FilterOptions OptionsForLog(FilterOptions options, const io::LogHeader& header,
+                            double median_row_spacing_s, std::vector<std::string>* notes) {
+  const bool spaced = !options.quasi_static && !header.QuasiStatic() &&
+                      median_row_spacing_s >= options.time_gap_s;
+  options.quasi_static = options.quasi_static || header.QuasiStatic() || spaced;
+  if (options.quasi_static) {
+    std::ostringstream why;
+    if (spaced) {
+      why << std::setprecision(3) << " (its rows lie a median " << median_row_spacing_s
+          << " s apart, beyond the time gap of " << options.time_gap_s
+          << " s: read as one row per pose)";
+    }
+    notes->push_back(
+        "quasi-static log" + why.str() +
+        ": each row filtered as a static measurement (t read as a pose index only; a contact "
+        "may go on from pose to pose)");
+  }
+  for (int j = 0; j < 2; ++j) {
+    options.joint_recorded[j] = header.JointRecorded(j + 1);
+    if (!options.joint_recorded[j]) {
+      const std::string n = std::to_string(j + 1);
+      notes->push_back("joint " + n + " not recorded: kept at its prior, q" + n +
+                               "_corr and q" + n + "_sd left empty");
+    }
+  }
+  return options;
+}
+
 LogFilterSummary FilterLog(const std::string& input_path, const std::string& output_path,
                            const models::ModelParameters& parameters,
                            const FilterOptions& options, bool smooth,
@@ -222,7 +266,8 @@ LogFilterSummary FilterLog(const std::string& input_path, const std::string& out
   if (!smooth) {
     io::LogReader reader(input_path, read_options);
     io::LogHeader header = reader.header();
-    const FilterOptions used = OptionsForLog(options, header, &summary);
+    const FilterOptions used =
+        OptionsForLog(options, header, MedianRowSpacingOf(input_path, read_options), &summary.notes);
     ComplianceFilter filter(parameters, used);
     const io::StandardColumns in(header);
     const std::size_t input_columns = header.columns.size();

@@ -235,6 +235,7 @@ void ComplianceFilter::Impl::UpdateEffort(const FilterSample& sample, int j, boo
   const double residual =
       effort - tau0 - inertial - arm_torque - extra_internal_torque_nm[j] - s.mean[kOffset];
   double log_likelihood_ratio = 0.0;
+  filter_internal::PoseTransitions transitions;
   if (mixture) {
     // The evidence for contact is a residual beyond what the unmodelled
     // internal torque explains, whatever the load did before: a contact's load
@@ -250,12 +251,13 @@ void ComplianceFilter::Impl::UpdateEffort(const FilterSample& sample, int j, boo
                                     : std::numeric_limits<double>::infinity();
     // The log-likelihood ratio of contact; the posterior is shared by both
     // joints (ShareContact): a contact is the tip's, not one joint's.
-    log_likelihood_ratio = ContactLogLikelihoodRatio(residual, sd_c * sd_c + free_variance,
-                                                     residual, free_variance, dof,
-                                                     PoseChangeEvidence(sample, j, residual));
+    transitions = PoseChangeEvidence(sample, j, residual, free_variance);
+    log_likelihood_ratio = ContactLogLikelihoodRatio(
+        residual, sd_c * sd_c + free_variance, residual, free_variance, dof,
+        transitions.valid ? transitions.held - transitions.free : 0.0);
   }
   pending[j] = PendingEffort{true, mixture, residual, variance, moving, rest, arm_torque,
-                             log_likelihood_ratio};
+                             log_likelihood_ratio, transitions};
 }
 
 // One contact for the tip: the chain's prior (the same for both joints once
@@ -270,6 +272,24 @@ void ComplianceFilter::Impl::ShareContact() {
     joint_scored = j;
   }
   if (scored == 0) return;
+  // A quasi-static pose pair on every scored joint: the chain's four moves
+  // from the last pose's posterior (ContactAfterPosePair).
+  filter_internal::PoseTransitions pair;
+  pair.valid = options.quasi_static;
+  for (int j = 0; j < 2 && pair.valid; ++j) {
+    if (!pending[j].update || !pending[j].mixture) continue;
+    const auto& t = pending[j].transitions;
+    pair.valid = t.valid;
+    pair.held += t.held, pair.onset += t.onset, pair.release += t.release, pair.free += t.free;
+  }
+  if (pair.valid) {
+    const double shared =
+        filter_internal::ContactAfterPosePair(options, contact_probability[joint_scored], pair);
+    for (int j = 0; j < 2; ++j) {
+      if (pending[j].update && pending[j].mixture) contact_probability[j] = shared;
+    }
+    return;
+  }
   const double prior = contact_prior[joint_scored];
   const double prior_log_odds = std::log(prior) - std::log1p(-prior);  // ±inf at 0 and 1
   const double shared =
@@ -313,21 +333,21 @@ double ComplianceFilter::Impl::FreeSpeed(int j, const FilterSample& sample, doub
 }
 
 // A quasi-static log's evidence for contact from the pose change
-// (QuasiStaticHeldEvidence): the last pose must be at the same depth (a clamp
+// (QuasiStaticTransitions): the last pose must be at the same depth (a clamp
 // re-made elsewhere starts anew) with both encoders read. Remembers this pose.
-double ComplianceFilter::Impl::PoseChangeEvidence(const FilterSample& sample, int j,
-                                                  double residual) {
-  if (!options.quasi_static) return 0.0;
+filter_internal::PoseTransitions ComplianceFilter::Impl::PoseChangeEvidence(
+    const FilterSample& sample, int j, double residual, double free_variance) {
+  if (!options.quasi_static) return {};
   LastPose& last = last_pose[j];
   const double encoder = sample.encoder_rad[j];
-  double evidence = 0.0;
+  filter_internal::PoseTransitions evidence;
   if (last.valid && std::isfinite(encoder) &&
       std::abs(depth - last.depth_m) <= kMaxHeldDepthChange) {
     const FilterJointState& s = joint[j];
-    evidence = QuasiStaticHeldEvidence(
-        options, residual - last.residual_nm, encoder - last.encoder_rad,
+    evidence = QuasiStaticTransitions(
+        options, residual, residual - last.residual_nm, encoder - last.encoder_rad,
         s.mean[kScale] * ComplianceAtDepth(j), std::sqrt(s.covariance(kScale, kScale)),
-        delta[j], extra_internal_torque_nm[j] - last.internal_torque_nm);
+        delta[j], extra_internal_torque_nm[j] - last.internal_torque_nm, free_variance);
   }
   last = LastPose{std::isfinite(encoder), encoder, residual, depth, extra_internal_torque_nm[j]};
   return evidence;

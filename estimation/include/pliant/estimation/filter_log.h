@@ -47,6 +47,17 @@ struct LogFilterSummary {
 FilterSample SampleFromRow(const io::StandardColumns& columns, const double* row,
                            bool fuse_reference);
 
+/// The median step of t between consecutive rows over the first 21 times
+/// given (NaN with fewer than 3 finite steps).
+double MedianRowSpacing(const std::vector<double>& times_s);
+
+/// What a log lets the filter read: which joints it records (its header), and
+/// whether its rows are poses rather than samples in time — marked so
+/// ("# timing: quasi-static") or lying a median of more than
+/// FilterOptions::time_gap_s apart. Adds one sentence per change to `notes`.
+FilterOptions OptionsForLog(FilterOptions options, const io::LogHeader& header,
+                            double median_row_spacing_s, std::vector<std::string>* notes);
+
 /// Throws io::InputError for a bad log and std::system_error when the output
 /// cannot be written; no output file is left behind then.
 LogFilterSummary FilterLog(const std::string& input_path, const std::string& output_path,
