@@ -8,7 +8,10 @@ For each instrument variant (generate.py's options) and the control case
   - the test log (held pushes at 100 Hz, or the variant's rate; scored
     against the tracker reference, whose own noise is added to the stated σ),
   - the test log without its tip_fixed column (online: nobody says the tip is
-    held), beside `pliant correct` (equation (2)) on the same log.
+    held), beside `pliant correct` (equation (2)) on the same log,
+  - the calibration log without its tip_fixed column (one row per pose, t a
+    pose index), beside `pliant correct`: the clamps' error, and how far each
+    moves the free rows (nothing touches the tip there).
 Prints one line per variant: held-row RMS error (mrad) and the share inside
 the 95 % interval per joint, and the rows the filter rejected.
 
@@ -83,18 +86,31 @@ def variant(pliant, directory, seed, options):
     without_column(path("test.csv"), path("online.csv"), "tip_fixed")
     run(pliant, "filter", "--params", path("p.json"), path("online.csv"), "-o", path("of.csv"))
     run(pliant, "correct", "--params", path("p.json"), path("online.csv"), "-o", path("oc.csv"))
+    # The calibration's clamps without the hint: one row per pose, t a pose
+    # index (no "# timing" line: the filter reads the spacing).
+    without_column(path("calibration.csv"), path("cal_online.csv"), "tip_fixed")
+    run(pliant, "filter", "--params", path("p.json"), path("cal_online.csv"), "-o", path("cof.csv"))
+    run(pliant, "correct", "--params", path("p.json"), path("cal_online.csv"), "-o", path("coc.csv"))
     cal, test = load(path("cf.csv")), load(path("tf.csv"))
     held = cal["tip_fixed"] > 0
     zero = np.zeros_like(cal["q1"])
     held_test = np.isfinite(test["q1_ref"])
     reference = (test["q1_ref"], test["q2_ref"])
     online, corrected = load(path("of.csv")), load(path("oc.csv"))
+    cal_online, cal_corrected = load(path("cof.csv")), load(path("coc.csv"))
+    free = ~held
+    moved = lambda e: [1e3 * np.sqrt(np.mean((e["q%d_corr" % j][free] - e["q%d" % j][free]) ** 2))
+                       for j in (1, 2)]
+    unhinted = (score(cal_online, (zero, zero), held),
+                [1e3 * np.sqrt(np.mean(cal_corrected["q%d_corr" % j][held] ** 2)) for j in (1, 2)],
+                moved(cal_online), moved(cal_corrected))
     return (score(cal, (zero, zero), held),
             score(test, reference, held_test, TRACKER_NOISE * noise_scale),
             score(online, reference, held_test, TRACKER_NOISE * noise_scale),
             int(np.sum(test["flags"].astype(int) & 1)),
             [1e3 * np.sqrt(np.mean((corrected["q%d_corr" % j][held_test] -
-                                    reference[j - 1][held_test]) ** 2)) for j in (1, 2)])
+                                    reference[j - 1][held_test]) ** 2)) for j in (1, 2)],
+            unhinted)
 
 
 def main():
@@ -108,13 +124,26 @@ def main():
         "correct", "rejected"))
     print("%-30s %-27s %-27s %-27s %-13s" % ("", "RMS mrad / in 95 %", "RMS mrad / in 95 %",
                                              "RMS mrad / in 95 %", "RMS mrad"))
+    unhinted = []
     for index, (name, options) in enumerate(VARIANTS):
-        cal, test, online, rejected, correct = variant(
+        cal, test, online, rejected, correct, calibration_online = variant(
             args.pliant, os.path.join(args.out_dir, "variant%d" % index), args.seed, options)
-        cell = lambda s: "%.2f/%.2f %3.0f/%3.0f %%" % (s[0][0], s[1][0], 100 * s[0][1],
-                                                      100 * s[1][1])
         print("%-30s %-27s %-27s %-27s %-13s %d" % (name, cell(cal), cell(test), cell(online),
                                                     "%.2f/%.2f" % tuple(correct), rejected))
+        unhinted.append((name, calibration_online))
+    print()
+    print("%-30s %-27s %-13s %-13s %s" % ("calibration, no tip_fixed", "filter on the clamps",
+                                          "correct", "free rows moved (mrad RMS)", ""))
+    print("%-30s %-27s %-13s %-13s %s" % ("", "RMS mrad / in 95 %", "RMS mrad", "filter",
+                                          "correct"))
+    for name, (filtered, corrected, moved_filter, moved_correct) in unhinted:
+        print("%-30s %-27s %-13s %-13s %s" % (name, cell(filtered), "%.2f/%.2f" % tuple(corrected),
+                                              "%.2f/%.2f" % tuple(moved_filter),
+                                              "%.2f/%.2f" % tuple(moved_correct)))
+
+
+def cell(s):
+    return "%.2f/%.2f %3.0f/%3.0f %%" % (s[0][0], s[1][0], 100 * s[0][1], 100 * s[1][1])
 
 
 if __name__ == "__main__":
