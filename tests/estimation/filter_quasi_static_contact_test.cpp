@@ -2,7 +2,7 @@
 // no time): a clamp's load passes through zero in every loop, where its size
 // alone cannot tell it from the bias table's error; a held shaft's load
 // follows the encoder through s·K(L) from pose to pose, a free arm's does not
-// (QuasiStaticHeldEvidence, docs/decisions/contact-prior.md). Before that
+// (QuasiStaticTransitions, docs/decisions/contact-prior.md). Before that
 // evidence each row was its own draw of the contact chain, and the clamp's
 // small loads were read as no contact.
 #include <algorithm>
