@@ -13,6 +13,15 @@
 #include "filter_impl.h"
 
 namespace pliant::estimation::filter_internal {
+namespace {
+
+// log N(x; 0, v).
+double LogNormal(double x, double v) {
+  constexpr double kLogTwoPi = 1.8378770664093453;
+  return -0.5 * (x * x / v + std::log(v) + kLogTwoPi);
+}
+
+}  // namespace
 
 ContactPrior MixContact(const FilterOptions& o, double probability, double dt) {
   ContactPrior m;
@@ -33,12 +42,8 @@ double ContactLogLikelihoodRatio(double contact_innovation, double contact_varia
                                  double held_log_evidence) {
   // Full log densities: the no-contact residual is Student-t when free_dof
   // is finite, and its normalisation differs from the Gaussian's.
-  constexpr double kLogTwoPi = 1.8378770664093453;
-  const auto log_normal = [](double x, double v) {
-    return -0.5 * (x * x / v + std::log(v) + kLogTwoPi);
-  };
-  const double l1 = log_normal(contact_innovation, contact_variance);
-  double l0 = log_normal(free_residual, free_variance);
+  const double l1 = LogNormal(contact_innovation, contact_variance);
+  double l0 = LogNormal(free_residual, free_variance);
   if (std::isfinite(free_dof)) {
     const double nu = free_dof;
     l0 = std::lgamma(0.5 * (nu + 1.0)) - std::lgamma(0.5 * nu) -
@@ -64,6 +69,29 @@ void CollapseContact(FilterJointState* state, double probability) {
   P.noalias() -= ((1.0 - probability) * (p_tau - probability * m * m)) * (g * g.transpose());
 }
 
+// The held law of a pose pair: the encoder's travel either all bends the
+// shaft (the load changes by h) or, with even odds, a share of it crosses
+// the clearance first, no more than the travel nor the clearance's width 2δ
+// (`crossable`, as a load): the change lies evenly between h and h less that.
+// A still joint can cross nothing, and its held law is the free one.
+namespace {
+double HeldPairLogLikelihood(double residual_change, double h, double variance,
+                             double crossable_nm) {
+  const double bend = LogNormal(residual_change - h, variance);
+  if (!(crossable_nm > 1e-9)) return bend;
+  const double sd = std::sqrt(variance);
+  const double low = h - std::copysign(crossable_nm, h);
+  const double upper = (residual_change - std::min(h, low)) / sd;
+  const double lower = (residual_change - std::max(h, low)) / sd;
+  // Φ(upper) − Φ(lower) through erfc, exact in the tails.
+  const double mass =
+      0.5 * (std::erfc(-upper / std::sqrt(2.0)) - std::erfc(-lower / std::sqrt(2.0)));
+  const double cross = std::log(std::max(mass, 1e-300)) - std::log(crossable_nm);
+  const double top = std::max(bend, cross);
+  return top + std::log(0.5 * std::exp(bend - top) + 0.5 * std::exp(cross - top));
+}
+}  // namespace
+
 // Two consecutive poses of one depth in a quasi-static log, r the effort
 // residual and h = Δq/(s·K(L)) the load the encoder's travel would add to a
 // held shaft. The chain moves between them in one of four ways, each with its
@@ -74,8 +102,9 @@ void CollapseContact(FilterJointState* state, double probability) {
 //   onset   (free → contact):    r − r_prev is a new load from the slab;
 //   release (contact → free):    r is the table's error alone, N(0, free).
 // What changes besides (the held friction) the model takes out under all.
-// Each sees two rows' effort noise; the held one also the doubt of s and of
-// the clearance, which the travel may cross instead of bending the shaft.
+// Each sees two rows' effort noise; the held one also the doubt of s and the
+// clearance, which the travel may cross instead of bending the shaft
+// (HeldPairLogLikelihood).
 // Only the onset and the release score the residual's size: a contact that
 // goes on is judged by whether its load follows the encoder, so a clamp's
 // load passing through zero stays a contact.
@@ -89,23 +118,18 @@ PoseTransitions QuasiStaticTransitions(const FilterOptions& o, double residual,
       !std::isfinite(encoder_change) || !std::isfinite(residual)) {
     return t;
   }
-  constexpr double kLogTwoPi = 1.8378770664093453;
-  const auto log_normal = [](double x, double v) {
-    return -0.5 * (x * x / v + std::log(v) + kLogTwoPi);
-  };
   const double h = encoder_change / scale_compliance;
   const double noise = 2.0 * o.effort_noise_nm * o.effort_noise_nm +
                        internal_torque_change * internal_torque_change;
   const double model = scale_sd * scale_sd + o.deflection_model_error * o.deflection_model_error;
-  // The travel may cross the clearance instead of bending the shaft, but no
-  // more of it than there was: a still joint's load stays (no doubt from δ).
-  const double crossing = std::min(std::abs(encoder_change), clearance_rad) / scale_compliance;
   const double sd_c = o.contact_load_sd_nm;
   t.valid = true;
-  t.held = log_normal(residual_change - h, noise + model * h * h + crossing * crossing);
-  t.free = log_normal(residual_change, noise);
-  t.onset = log_normal(residual_change, noise + sd_c * sd_c);
-  t.release = log_normal(residual, free_variance);
+  t.held = HeldPairLogLikelihood(residual_change, h, noise + model * h * h,
+                                 std::min(std::abs(encoder_change), 2.0 * clearance_rad) /
+                                     scale_compliance);
+  t.free = LogNormal(residual_change, noise);
+  t.onset = LogNormal(residual_change, noise + sd_c * sd_c);
+  t.release = LogNormal(residual, free_variance);
   return t;
 }
 
