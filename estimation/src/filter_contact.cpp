@@ -21,18 +21,32 @@ double LogNormal(double x, double v) {
   return -0.5 * (x * x / v + std::log(v) + kLogTwoPi);
 }
 
+// log(e^a + e^b), −inf when both are.
+double LogSumExp(double a, double b) {
+  const double top = std::max(a, b);
+  if (!std::isfinite(top)) return top;
+  return top + std::log(std::exp(a - top) + std::exp(b - top));
+}
+
+// The chain's chances of a contact starting and of one ending over a step.
+// A quasi-static log's t is a pose index, and no time passes in the chain
+// between two poses but one nominal period's: a contact goes on from pose to
+// pose unless the rows say otherwise (QuasiStaticTransitions).
+struct ChainSwitch {
+  double start, end;
+};
+ChainSwitch SwitchOver(const FilterOptions& o, double dt) {
+  if (o.quasi_static) dt = o.sample_period_s;
+  return {-std::expm1(-o.contact_start_rate_hz * dt), -std::expm1(-o.contact_end_rate_hz * dt)};
+}
+
 }  // namespace
 
 ContactPrior MixContact(const FilterOptions& o, double probability, double dt) {
   ContactPrior m;
-  // A quasi-static log's t is a pose index, and no time passes in the chain
-  // between two poses but one nominal period's: a contact goes on from pose
-  // to pose unless the rows say otherwise (QuasiStaticTransitions).
-  if (o.quasi_static) dt = o.sample_period_s;
-  const double start = -std::expm1(-o.contact_start_rate_hz * dt);
-  const double end = -std::expm1(-o.contact_end_rate_hz * dt);
-  const double stays = probability * (1.0 - end);
-  m.probability = stays + (1.0 - probability) * start;
+  const ChainSwitch chance = SwitchOver(o, dt);
+  const double stays = probability * (1.0 - chance.end);
+  m.probability = stays + (1.0 - probability) * chance.start;
   m.continuing = m.probability > 0.0 ? stays / m.probability : 0.0;
   return m;
 }
@@ -87,8 +101,7 @@ double HeldPairLogLikelihood(double residual_change, double h, double variance,
   const double mass =
       0.5 * (std::erfc(-upper / std::sqrt(2.0)) - std::erfc(-lower / std::sqrt(2.0)));
   const double cross = std::log(std::max(mass, 1e-300)) - std::log(crossable_nm);
-  const double top = std::max(bend, cross);
-  return top + std::log(0.5 * std::exp(bend - top) + 0.5 * std::exp(cross - top));
+  return LogSumExp(bend, cross) + std::log(0.5);
 }
 }  // namespace
 
@@ -135,21 +148,14 @@ PoseTransitions QuasiStaticTransitions(const FilterOptions& o, double residual,
 
 double ContactAfterPosePair(const FilterOptions& o, double probability,
                             const PoseTransitions& evidence) {
-  const double dt = o.sample_period_s;  // one nominal period per pose (MixContact)
-  const double start = -std::expm1(-o.contact_start_rate_hz * dt);
-  const double end = -std::expm1(-o.contact_end_rate_hz * dt);
+  const ChainSwitch chance = SwitchOver(o, o.sample_period_s);  // one period per pose
   const double p = std::clamp(probability, 0.0, 1.0);
   // log(0) is −inf: a move the last pose rules out adds nothing.
-  const double to_contact[2] = {std::log(p) + std::log1p(-end) + evidence.held,
-                                std::log1p(-p) + std::log(start) + evidence.onset};
-  const double to_free[2] = {std::log(p) + std::log(end) + evidence.release,
-                             std::log1p(-p) + std::log1p(-start) + evidence.free};
-  const auto log_sum = [](const double (&x)[2]) {
-    const double top = std::max(x[0], x[1]);
-    if (!std::isfinite(top)) return top;
-    return top + std::log(std::exp(x[0] - top) + std::exp(x[1] - top));
-  };
-  const double contact = log_sum(to_contact), free = log_sum(to_free);
+  const double contact =
+      LogSumExp(std::log(p) + std::log1p(-chance.end) + evidence.held,
+                std::log1p(-p) + std::log(chance.start) + evidence.onset);
+  const double free = LogSumExp(std::log(p) + std::log(chance.end) + evidence.release,
+                                std::log1p(-p) + std::log1p(-chance.start) + evidence.free);
   if (!std::isfinite(contact)) return 0.0;
   if (!std::isfinite(free)) return 1.0;
   return 1.0 / (1.0 + std::exp(std::clamp(free - contact, -700.0, 700.0)));

@@ -225,10 +225,11 @@ double MedianRowSpacing(const std::vector<double>& times_s) {
   return steps[steps.size() / 2];
 }
 
-// A log marked quasi-static has rows that are poses; so has one whose rows lie further apart than a time gap
-// (a calibration's settled poses, hold means, a pose index for t): read as a
-// continuous log, each of its rows would be a gap that starts the tip and the
-// load again, and a clamp's load would be judged by its size alone.
+// A log marked quasi-static has rows that are poses; so has one whose rows
+// lie further apart than a time gap (a calibration's settled poses, hold
+// means, a pose index for t): read as a continuous log, each of its rows
+// would be a gap that starts the tip and the load again, and a clamp's load
+// would be judged by its size alone.
 FilterOptions OptionsForLog(FilterOptions options, const io::LogHeader& header,
                             double median_row_spacing_s, std::vector<std::string>* notes) {
   const bool spaced = !options.quasi_static && !header.QuasiStatic() &&
@@ -250,8 +251,8 @@ FilterOptions OptionsForLog(FilterOptions options, const io::LogHeader& header,
     options.joint_recorded[j] = header.JointRecorded(j + 1);
     if (!options.joint_recorded[j]) {
       const std::string n = std::to_string(j + 1);
-      notes->push_back("joint " + n + " not recorded: kept at its prior, q" + n +
-                               "_corr and q" + n + "_sd left empty");
+      notes->push_back("joint " + n + " not recorded: kept at its prior, q" + n + "_corr and q" +
+                       n + "_sd left empty");
     }
   }
   return options;
