@@ -33,7 +33,8 @@ struct OutputColumns {
         tip(header.AddColumn("tip_corr_mm")),
         tip_sd(header.AddColumn("tip_corr_sd_mm")),
         nis(header.AddColumn("nis")),
-        flags(header.AddColumn("flags")) {}
+        flags(header.AddColumn("flags")),
+        contact(header.AddColumn("contact_probability")) {}
 
   void Fill(const FilterEstimate& e, double* row) const {
     constexpr double kEmpty = std::numeric_limits<double>::quiet_NaN();
@@ -46,9 +47,11 @@ struct OutputColumns {
     row[tip_sd] = e.tip_correction_sd_mm;
     row[nis] = e.nis;
     row[flags] = double(e.flags);
+    // One contact for the tip: both joints share its posterior.
+    row[contact] = e.contact_probability[recorded[0] ? 0 : 1];
   }
 
-  int q1, q2, sd1, sd2, cov, tip, tip_sd, nis, flags;
+  int q1, q2, sd1, sd2, cov, tip, tip_sd, nis, flags, contact;
   bool recorded[2] = {true, true};  // an unrecorded joint's columns are empty
 };
 

@@ -94,6 +94,9 @@ void BindEstimate(py::module_& m) {
       .def_readonly("nis", &FilterEstimate::nis, "Normalised innovation squared of the step.")
       .def_readonly("nis_dof", &FilterEstimate::nis_dof, "Scalar measurements the NIS sums.")
       .def_readonly("flags", &FilterEstimate::flags, "FLAG_* bits (pliant.FLAG_REJECTED, …).")
+      .def_readonly("contact_probability", &FilterEstimate::contact_probability,
+                    "The probability that something touches the instrument, per joint (1 with "
+                    "the tip_fixed hint).")
       .def_readonly("external_torque_nm", &FilterEstimate::external_torque_nm,
                     "Estimated external torques on joints 1-2 (N·m).")
       .def_readonly("backlash_offset_rad", &FilterEstimate::backlash_offset_rad,

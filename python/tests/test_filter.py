@@ -58,12 +58,13 @@ def test_step_by_step_is_the_commands_log(cli_filtered):
     expected = pliant.read_log(out)
     f = pliant.Filter(pliant.load_parameters(PARAMS))
     got = {n: [] for n in ("q1_corr", "q2_corr", "q1_sd", "q2_sd", "q12_cov", "tip_corr_mm",
-                           "tip_corr_sd_mm", "nis", "flags")}
+                           "tip_corr_sd_mm", "nis", "flags", "contact_probability")}
     for sample in samples(pliant.read_log(LOG)):
         e = f.step(sample)
         for name, value in zip(got, (e.corrected[0], e.corrected[1], e.sd[0], e.sd[1],
                                      e.covariance[0, 1], e.tip_correction_mm,
-                                     e.tip_correction_sd_mm, e.nis, e.flags)):
+                                     e.tip_correction_sd_mm, e.nis, e.flags,
+                                     e.contact_probability[0])):
             got[name].append(value)
     for name, values in got.items():
         np.testing.assert_array_equal(np.array(values, dtype=np.float64), expected[name], name)

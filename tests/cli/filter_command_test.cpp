@@ -27,7 +27,7 @@ TEST(FilterCommand, AddsTheFilterColumnsAndBeatsEquation2OnTheSample) {
   EXPECT_NE(r.out.find("uncorrected          RMS   5.717 mm"), std::string::npos) << r.out;
   const io::Log log = io::ReadLog(out);
   for (const char* column : {"q1_corr", "q2_corr", "q1_sd", "q2_sd", "q12_cov", "tip_corr_mm",
-                             "tip_corr_sd_mm", "nis", "flags"}) {
+                             "tip_corr_sd_mm", "nis", "flags", "contact_probability"}) {
     EXPECT_TRUE(log.header.Has(column)) << column;
   }
   // Equation (2) on this log: RMS 1.041 mm (docs/correction.md). The filter
