@@ -121,6 +121,7 @@ void ComplianceFilter::Impl::Reset() {
         (options.contact_start_rate_hz + options.contact_end_rate_hz);
     contact_onset[j] = 0.0;
     last_pose[j] = filter_internal::LastPose{};
+    pair_window[j].Restart();
     free_motion[j] = filter_internal::FreeArmMotion{};
     unmodelled[j].variance = options.moving_effort_sd_nm * options.moving_effort_sd_nm;
     internal_torque[j].Start(options);
@@ -134,6 +135,7 @@ void ComplianceFilter::Impl::Reset() {
   window_sum = 0.0;
   travel.Reset();
   extra_internal_torque_nm.setZero();
+  held_given_contact = 0.5;
 }
 
 void ComplianceFilter::Impl::Initialise(const FilterSample& sample, double depth_m) {

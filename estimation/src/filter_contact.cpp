@@ -53,7 +53,7 @@ ContactPrior MixContact(const FilterOptions& o, double probability, double dt) {
 
 double ContactLogLikelihoodRatio(double contact_innovation, double contact_variance,
                                  double free_residual, double free_variance, double free_dof,
-                                 double held_log_evidence) {
+                                 double held_log_evidence, double level_weight) {
   // Full log densities: the no-contact residual is Student-t when free_dof
   // is finite, and its normalisation differs from the Gaussian's.
   const double l1 = LogNormal(contact_innovation, contact_variance);
@@ -65,7 +65,7 @@ double ContactLogLikelihoodRatio(double contact_innovation, double contact_varia
          0.5 * (nu + 1.0) * std::log1p(free_residual * free_residual / (nu * free_variance));
   }
   if (!(std::isfinite(l1) && std::isfinite(l0))) return 0.0;
-  return std::clamp(l1 - l0 + held_log_evidence, -700.0, 700.0);
+  return std::clamp(level_weight * (l1 - l0) + held_log_evidence, -700.0, 700.0);
 }
 
 // The mixture of the slab posterior N(x, P) (weight p) and the same Gaussian
@@ -146,6 +146,39 @@ PoseTransitions QuasiStaticTransitions(const FilterOptions& o, double residual,
   return t;
 }
 
+bool PairWindow::Add(const LastPose& row, double time_s, LastPose* closed) {
+  if (!row.valid || !std::isfinite(time_s)) {
+    Restart();
+    return false;
+  }
+  if (rows > 0 && std::abs(row.depth_m - sum.depth_m) > kMaxHeldDepthChange) Restart();
+  if (rows == 0) {
+    sum = row;
+    start_s = time_s;
+  } else {
+    sum.encoder_rad += row.encoder_rad;
+    sum.residual_nm += row.residual_nm;
+    sum.internal_torque_nm += row.internal_torque_nm;
+    sum.arm_regressor += row.arm_regressor;
+  }
+  ++rows;
+  if (time_s - start_s < kPairWindowS) return false;
+  LastPose mean = sum;
+  mean.encoder_rad /= rows, mean.residual_nm /= rows, mean.internal_torque_nm /= rows;
+  mean.arm_regressor /= rows;
+  rows = 0;
+  const bool pair =
+      previous.valid && std::abs(mean.depth_m - previous.depth_m) <= kMaxHeldDepthChange;
+  *closed = mean;
+  if (!pair) previous = mean;
+  return pair;
+}
+
+double HeldWindowEvidence(const PoseTransitions& t) {
+  if (!t.valid) return 0.0;
+  return LogSumExp(t.held - t.free, 0.0) + std::log(0.5);
+}
+
 double ContactAfterPosePair(const FilterOptions& o, double probability,
                             const PoseTransitions& evidence) {
   const ChainSwitch chance = SwitchOver(o, o.sample_period_s);  // one period per pose
@@ -190,44 +223,6 @@ void UnmodelledEffort::Learn(double weight, double residual, double rest_varianc
   const double total = rest_variance + variance;
   const double r2 = std::min(residual * residual, 9.0 * total);
   variance += weight * (std::max(0.0, r2 - rest_variance) - variance);
-}
-
-void InternalTorque::Start(const FilterOptions& o) {
-  coefficients.setZero();
-  regressor.setZero();
-  information_mean.setZero();
-  const Vector4 sd(o.internal_inertia_sd_kg_m2, o.internal_coulomb_sd_nm,
-                   o.internal_viscous_sd_nm_s, o.internal_bias_error_sd_nm);
-  prior_information = sd.cwiseProduct(sd).cwiseInverse().asDiagonal();
-  information = prior_information;
-  covariance = sd.cwiseProduct(sd).asDiagonal();
-}
-
-void InternalTorque::SetMotion(const FilterOptions& o, double velocity, double acceleration) {
-  regressor << acceleration, std::tanh(velocity / o.coulomb_speed_rad_s), velocity, 1.0;
-}
-
-// Weighted least squares with stabilised forgetting, in information form: per
-// row that teaches (weight w: its no-contact probability × how much the arm
-// moves), the past's information fades by `forget` toward the prior's, not
-// toward none: I ← λ·I + (1 − λ)·I₀ + w·φφᵀ/σ², ξ ← λ·ξ + w·φ·r/σ² (the prior's
-// mean is 0). Plain exponential forgetting (P ← P/λ) blows up the covariance
-// in the directions a motion does not excite (a constant sign of θ̇ makes
-// tanh(θ̇/v_f), θ̇ and 1 nearly collinear) until rounding makes it indefinite:
-// on the synthetic free motion of filter_contact_test.cpp the arm's torque
-// then jumped to 1.4 N·m and was read as a contact for the rest of the log.
-// Here I ≥ (1 − λ)·I₀ > 0 always, so the coefficients' spread never exceeds
-// the prior's by more than 1/(1 − λ) and the covariance stays positive.
-void InternalTorque::Learn(double weight, double residual, double variance, double forget) {
-  if (!(weight > 1e-3)) return;
-  const double w = weight / variance;
-  information = forget * information + (1.0 - forget) * prior_information;
-  information.noalias() += w * regressor * regressor.transpose();
-  information_mean = forget * information_mean + (w * residual) * regressor;
-  const Eigen::LLT<Eigen::Matrix4d> factor(information);
-  if (factor.info() != Eigen::Success) return;
-  coefficients = factor.solve(information_mean);
-  covariance = factor.solve(Eigen::Matrix4d::Identity());
 }
 
 }  // namespace pliant::estimation::filter_internal

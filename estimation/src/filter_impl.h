@@ -14,6 +14,7 @@
 
 #include "pliant/estimation/extra_effects.h"
 #include "pliant/estimation/filter.h"
+#include "filter_internal_torque.h"
 #include "pliant/models/effects/compliance.h"
 #include "pliant/models/travel_since_reversal.h"
 
@@ -73,11 +74,12 @@ struct ContactPrior {
 ContactPrior MixContact(const FilterOptions& o, double probability, double dt);
 // The evidence for contact from the slab's innovation (and its variance) and the
 // no-contact residual (its scale², Student-t with free_dof degrees of freedom,
-// Gaussian when free_dof is infinite): log p(r | contact) − log p(r | free) +
-// held_log_evidence (a pose pair's held − free, QuasiStaticTransitions), within ±700.
+// Gaussian when free_dof is infinite): level_weight·[log p(r | contact) −
+// log p(r | free)] + held_log_evidence (a pose pair's, QuasiStaticTransitions),
+// within ±700.
 double ContactLogLikelihoodRatio(double contact_innovation, double contact_variance,
                                  double free_residual, double free_variance, double free_dof,
-                                 double held_log_evidence);
+                                 double held_log_evidence, double level_weight);
 // A quasi-static log's two consecutive poses at one depth: their
 // log-likelihoods under the four moves of the contact chain between them
 // (filter_contact.cpp, QuasiStaticTransitions). Invalid: no such pair.
@@ -104,14 +106,36 @@ struct PendingEffort {
   double log_likelihood_ratio = 0.0;
   PoseTransitions transitions;  // quasi-static logs only
 };
-// A quasi-static log's last pose, per joint, for QuasiStaticTransitions.
+// A quasi-static log's last pose, per joint, for QuasiStaticTransitions; in a
+// continuous log, the means over a pair window's rows (PairWindow).
 struct LastPose {
   bool valid = false;
   double encoder_rad = 0.0;
   double residual_nm = 0.0;
   double depth_m = 0.0;
   double internal_torque_nm = 0.0;  // the parameters' further effects' (held friction)
+  Eigen::Matrix<double, 4, 1> arm_regressor = Eigen::Matrix<double, 4, 1>::Zero();
 };
+// A continuous log's rows in windows of kPairWindowS that do not overlap
+// (each row's noise counted once): the means of two consecutive windows are a
+// pose pair. Means, because a row's acceleration (and so its inertial doubt)
+// flickers with the encoder's counts while a window's mean is the change of
+// its speed; the effort's noise of a mean is taken as one row's, which no
+// correlation between rows can exceed.
+constexpr double kPairWindowS = 0.05;
+struct PairWindow {
+  int rows = 0;
+  double start_s = 0.0;
+  LastPose sum, previous;  // this window's sums (depth: its first row's); the last window's means
+  void Restart() { rows = 0, previous.valid = false; }
+  // Adds a row; true when it closes a window whose means follow a previous
+  // window's at one depth (then `previous` is the earlier, `closed` this one).
+  bool Add(const LastPose& row, double time_s, LastPose* closed);
+};
+// log[(e^(held − free) + 1)/2]: a contact holds the tip (the load follows
+// the bend) or, with even odds, moves with the arm (its load changes as a
+// free arm's effort would).
+double HeldWindowEvidence(const PoseTransitions& t);
 // How fast the arm moves as a free arm would: the speed of z = q_enc − s·K(L)·r,
 // r the effort residual. A held tip's motor moves only as the load bends the
 // shaft, so z stands still while a pushed tip's encoder moves; a free arm's
@@ -125,25 +149,6 @@ struct FreeArmMotion {
 };
 // The Gaussian-sum collapse of the slab posterior and its tau = 0 conditional.
 void CollapseContact(FilterJointState* state, double probability);
-// The arm's own torque in the effort while it moves, learned online from
-// no-contact rows: inertia J·θ̈, Coulomb friction f·tanh(θ̇/v_f), viscous
-// friction c·θ̇ and the bias table's mean error τ_b (recursive least squares
-// with forgetting; filter_contact.cpp).
-struct InternalTorque {
-  using Vector4 = Eigen::Matrix<double, 4, 1>;
-  Vector4 coefficients = Vector4::Zero();  // J, f, c, τ_b
-  Eigen::Matrix4d covariance = Eigen::Matrix4d::Zero();
-  // Information form (the fading is done there; filter_contact.cpp says why).
-  Eigen::Matrix4d information = Eigen::Matrix4d::Zero();
-  Eigen::Matrix4d prior_information = Eigen::Matrix4d::Zero();
-  Vector4 information_mean = Vector4::Zero();  // information · coefficients
-  Vector4 regressor = Vector4::Zero();     // this row's (θ̈, tanh(θ̇/v_f), θ̇, 1)
-  void Start(const FilterOptions& o);
-  void SetMotion(const FilterOptions& o, double velocity_rad_s, double acceleration_rad_s2);
-  double Torque() const { return coefficients.dot(regressor); }
-  double Variance() const { return regressor.dot(covariance * regressor); }
-  void Learn(double weight, double residual, double variance, double forget);
-};
 // σ_moving², the moving arm's unmodelled internal torque (FilterOptions::
 // moving_effort_sd_nm), learned from moving no-contact rows.
 struct UnmodelledEffort {
@@ -215,12 +220,14 @@ struct ComplianceFilter::Impl {
   void Reinitialise(int j, const FilterSample& sample, bool held_tip_stays);
   double FreeSpeed(int j, const FilterSample& sample, double effort_less_bias);
   void ShareContact();
+  double HeldShare(const FilterSample& sample, int j) const;
+  void LearnHold();
   void FinishEffort(const FilterSample& sample, int j, bool unloaded, StepTally* tally);
   FilterEstimate Output(const FilterSample& newest);
 
   void Initialise(const FilterSample& sample, double depth);
   void Predict(int j, double dt, bool tip_fixed, bool seated, double encoder_increment,
-               double extra_compliance);
+               double extra_compliance, double held_share);
   void Release(int j, double dt, double encoder_increment);
   void EncoderModel(double depth, Eigen::Vector2d* predicted, Vector* h,
                     Eigen::Vector2d* coupling_variance) const;
@@ -302,7 +309,12 @@ struct ComplianceFilter::Impl {
   double contact_probability[2] = {1.0, 1.0};
   double contact_prior[2] = {1.0, 1.0};
   double contact_onset[2] = {0.0, 0.0};
+  // Given a contact, the chance that it holds the tip (its load follows the
+  // bend) rather than moving with the arm: the pair windows' evidence
+  // (HeldWindowEvidence's two laws), persisting as the contact chain does.
+  double held_given_contact = 0.5;
   filter_internal::LastPose last_pose[2];  // quasi-static logs only
+  filter_internal::PairWindow pair_window[2];  // continuous logs only
   filter_internal::FreeArmMotion free_motion[2];  // without the tip_fixed hint
   filter_internal::PendingEffort pending[2];
   filter_internal::UnmodelledEffort unmodelled[2];

@@ -15,8 +15,12 @@ using namespace filter_internal;
 // F·P·Fᵀ touches only b's row and column.
 // extra_compliance: the file's deflection effects' ∂Δq_j/∂tau_j (rad/N·m), on
 // top of s·K(L) where a held load follows the motor.
+// held_share: without the tip_fixed hint, the chance that a contact holds the
+// tip; the prediction is the mixture of a held tip's (the load follows the
+// bend) and a free one's (the tip follows the encoder), moment-matched.
 void ComplianceFilter::Impl::Predict(int j, double dt, bool tip_fixed, bool seated,
-                                     double encoder_increment, double extra_compliance) {
+                                     double encoder_increment, double extra_compliance,
+                                     double held_share) {
   FilterJointState& s = joint[j];
   FilterTransition& t = transition[j];
   const auto& o = options;
@@ -64,7 +68,8 @@ void ComplianceFilter::Impl::Predict(int j, double dt, bool tip_fixed, bool seat
   row *= bound.row_scale;
   const double pbb = bound.row_scale * bound.row_scale * propagated;
 
-  s.mean[kTip] += tip_fixed ? 0.0 : encoder_increment;
+  const double held = tip_fixed ? 1.0 : std::clamp(held_share, 0.0, 1.0);
+  s.mean[kTip] += (1.0 - held) * encoder_increment;
   s.mean[kBacklash] = next.a;
 
   P.col(kBacklash) = row;
@@ -80,12 +85,16 @@ void ComplianceFilter::Impl::Predict(int j, double dt, bool tip_fixed, bool seat
   const double k_depth = ComplianceAtDepth(j);
   const double bend = s.mean[kScale] * k_depth;
   const double extra = bend + extra_compliance > 0.1 * bend ? extra_compliance : 0.0;
-  if (tip_fixed && o.load_follows_motor) {
+  double load_step = 0.0;
+  if (held > 0.0 && o.load_follows_motor) {
     const StateJet added =
         HeldLoadIncrement(hold, encoder_increment,
                           StateJet(s.mean[kScale], kScale) + extra / k_depth, k_depth);
-    s.mean[kTorque] += added.a;
-    fts = added.v[kScale];
+    load_step = added.a;
+    s.mean[kTorque] += held * added.a;
+    // Without the hint the held share is itself a guess: through ∂tau+/∂s
+    // the effort's innovations would teach s a bend nobody saw held.
+    fts = tip_fixed ? added.v[kScale] : 0.0;
     const Vector torque_row = P.col(kTorque) + fts * P.col(kScale);
     P.col(kTorque) = torque_row;
     P.row(kTorque) = torque_row.transpose();
@@ -104,6 +113,11 @@ void ComplianceFilter::Impl::Predict(int j, double dt, bool tip_fixed, bool seat
   q[kScale] = o.compliance_scale_rate * o.compliance_scale_rate * dt;
   q[kClearance] = 0.0;
   q[kOffset] = o.effort_offset_rate_nm * o.effort_offset_rate_nm * dt;
+  // The two predictions' means differ by Δq in the tip and the bend's load in
+  // tau: the mixture's spread (its diagonal: the process noise stays diagonal).
+  const double spread = held * (1.0 - held);
+  q[kTip] += spread * encoder_increment * encoder_increment;
+  q[kTorque] += spread * load_step * load_step;
   P.diagonal() += q;
 
   t.predicted_mean = s.mean;
@@ -181,6 +195,9 @@ void ComplianceFilter::Impl::Reinitialise(int j, const FilterSample& sample, boo
   for (int& r : rejections[j]) r = 0;
   restart_output[j] = true;
   free_motion[j].started = false;  // z jumps with the pose
+  // A continuous log's pair window does not span a jump or a gap; a
+  // quasi-static log's every row re-initialises and pairs with the last pose.
+  pair_window[j].Restart();
 }
 
 }  // namespace pliant::estimation

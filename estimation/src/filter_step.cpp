@@ -101,7 +101,7 @@ void ComplianceFilter::Impl::AdvanceState(const FilterSample& sample, double pre
     const bool jump = implausible_jump[j] && std::isfinite(sample.encoder_rad[j]);
     contact_onset[j] = ContactOnsetVariance(sample, j, dt);
     Predict(j, dt, sample.tip_fixed, sample.tip_fixed && !last_tip_fixed, increment[j],
-            extra.slope(j, j));
+            extra.slope(j, j), HeldShare(sample, j));
     if (jump || gap) {
       // A held tip stays only through a hold: one that begins here may be a
       // pose away from the free tip (a new clamp). Within a hold an encoder
@@ -184,6 +184,7 @@ void ComplianceFilter::Impl::UpdateEffort(const FilterSample& sample, int j, boo
   if (std::isfinite(effort) && !usable) tally->flags |= kFlagEffortSaturated;
   if (!usable) {
     last_pose[j].valid = false;
+    pair_window[j].Restart();
     if (mixture) {  // the chain's prediction alone
       contact_probability[j] = contact_prior[j];
       CollapseContact(&joint[j], contact_probability[j]);
@@ -252,51 +253,19 @@ void ComplianceFilter::Impl::UpdateEffort(const FilterSample& sample, int j, boo
     // The log-likelihood ratio of contact; the posterior is shared by both
     // joints (ShareContact): a contact is the tip's, not one joint's.
     transitions = PoseChangeEvidence(sample, j, residual, free_variance);
-    log_likelihood_ratio = ContactLogLikelihoodRatio(
-        residual, sd_c * sd_c + free_variance, residual, free_variance, dof,
-        transitions.valid ? transitions.held - transitions.free : 0.0);
+    const double held_evidence =
+        options.quasi_static ? (transitions.valid ? transitions.held - transitions.free : 0.0)
+                             : filter_internal::HeldWindowEvidence(transitions);
+    // A load's level, like the table's error, holds over many rows: rows
+    // closer than a pair window are one look at it, not many.
+    const double level_weight =
+        options.quasi_static ? 1.0 : std::min(1.0, step_dt / filter_internal::kPairWindowS);
+    log_likelihood_ratio =
+        ContactLogLikelihoodRatio(residual, sd_c * sd_c + free_variance, residual, free_variance,
+                                  dof, held_evidence, level_weight);
   }
   pending[j] = PendingEffort{true, mixture, residual, variance, moving, rest, arm_torque,
                              log_likelihood_ratio, transitions};
-}
-
-// One contact for the tip: the chain's prior (the same for both joints once
-// they have shared a posterior) with both joints' evidence.
-void ComplianceFilter::Impl::ShareContact() {
-  double log_odds = 0.0;
-  int scored = 0, joint_scored = 0;
-  for (int j = 0; j < 2; ++j) {
-    if (!pending[j].update || !pending[j].mixture) continue;
-    log_odds += pending[j].log_likelihood_ratio;
-    ++scored;
-    joint_scored = j;
-  }
-  if (scored == 0) return;
-  // A quasi-static pose pair on every scored joint: the chain's four moves
-  // from the last pose's posterior (ContactAfterPosePair).
-  filter_internal::PoseTransitions pair;
-  pair.valid = options.quasi_static;
-  for (int j = 0; j < 2 && pair.valid; ++j) {
-    if (!pending[j].update || !pending[j].mixture) continue;
-    const auto& t = pending[j].transitions;
-    pair.valid = t.valid;
-    pair.held += t.held, pair.onset += t.onset, pair.release += t.release, pair.free += t.free;
-  }
-  if (pair.valid) {
-    const double shared =
-        filter_internal::ContactAfterPosePair(options, contact_probability[joint_scored], pair);
-    for (int j = 0; j < 2; ++j) {
-      if (pending[j].update && pending[j].mixture) contact_probability[j] = shared;
-    }
-    return;
-  }
-  const double prior = contact_prior[joint_scored];
-  const double prior_log_odds = std::log(prior) - std::log1p(-prior);  // ±inf at 0 and 1
-  const double shared =
-      1.0 / (1.0 + std::exp(-std::clamp(prior_log_odds + log_odds, -700.0, 700.0)));
-  for (int j = 0; j < 2; ++j) {
-    if (pending[j].update && pending[j].mixture) contact_probability[j] = shared;
-  }
 }
 
 // The effort's update once the contact is known: what the no-contact rows
@@ -312,9 +281,9 @@ void ComplianceFilter::Impl::FinishEffort(const FilterSample& sample, int j, boo
                             -std::expm1(-step_dt / options.unmodelled_effort_memory),
                         e.residual, e.rest);
     if (!options.quasi_static) {
-      internal_torque[j].Learn(free_share * e.moving, e.residual + e.arm_torque,
-                               e.rest + unmodelled[j].variance,
-                               std::exp(-step_dt / options.internal_torque_memory_s));
+      internal_torque[j].Learn(e.moving, e.residual + e.arm_torque,
+                               e.rest + unmodelled[j].variance, contact_probability[j], step_dt,
+                               options.internal_torque_memory_s);
     }
   }
   ScalarUpdate(j, kEffortChannel, Vector::Unit(kTorque) + Vector::Unit(kOffset),
@@ -330,27 +299,6 @@ double ComplianceFilter::Impl::FreeSpeed(int j, const FilterSample& sample, doub
   const double r = effort_less_bias - extra_internal_torque_nm[j] - s.mean[kOffset];
   free_motion[j].Advance(step_dt, sample.encoder_rad[j] - s.mean[kScale] * ComplianceAtDepth(j) * r);
   return free_motion[j].velocity_rad_s;
-}
-
-// A quasi-static log's evidence for contact from the pose change
-// (QuasiStaticTransitions): the last pose must be at the same depth (a clamp
-// re-made elsewhere starts anew) with both encoders read. Remembers this pose.
-filter_internal::PoseTransitions ComplianceFilter::Impl::PoseChangeEvidence(
-    const FilterSample& sample, int j, double residual, double free_variance) {
-  if (!options.quasi_static) return {};
-  LastPose& last = last_pose[j];
-  const double encoder = sample.encoder_rad[j];
-  filter_internal::PoseTransitions evidence;
-  if (last.valid && std::isfinite(encoder) &&
-      std::abs(depth - last.depth_m) <= kMaxHeldDepthChange) {
-    const FilterJointState& s = joint[j];
-    evidence = QuasiStaticTransitions(
-        options, residual, residual - last.residual_nm, encoder - last.encoder_rad,
-        s.mean[kScale] * ComplianceAtDepth(j), std::sqrt(s.covariance(kScale, kScale)),
-        delta[j], extra_internal_torque_nm[j] - last.internal_torque_nm, free_variance);
-  }
-  last = LastPose{std::isfinite(encoder), encoder, residual, depth, extra_internal_torque_nm[j]};
-  return evidence;
 }
 
 }  // namespace pliant::estimation

@@ -1,0 +1,119 @@
+// The contact chain's evidence on each step of the filter (filter_step.cpp):
+// both joints' shared posterior, the pose pairs that say whether a load
+// follows the encoder, and the chance that a contact holds the tip.
+// docs/decisions/contact-prior.md says why.
+#include <algorithm>
+#include <cmath>
+
+#include "filter_impl.h"
+
+namespace pliant::estimation {
+
+using namespace filter_internal;
+
+// Without the hint, the chance that the last step's contact holds the tip
+// (0 in a quasi-static log, whose every row starts the tip anew, and where
+// the load is known or every residual is load).
+double ComplianceFilter::Impl::HeldShare(const FilterSample& sample, int j) const {
+  if (!options.infer_contact || sample.tip_fixed || options.quasi_static ||
+      InUnloadedStart(options, sample.time_s - start_time_s)) {
+    return 0.0;
+  }
+  return contact_probability[j] * held_given_contact;
+}
+
+// One contact for the tip: the chain's prior (the same for both joints once
+// they have shared a posterior) with both joints' evidence.
+void ComplianceFilter::Impl::ShareContact() {
+  double log_odds = 0.0;
+  int scored = 0, joint_scored = 0;
+  for (int j = 0; j < 2; ++j) {
+    if (!pending[j].update || !pending[j].mixture) continue;
+    log_odds += pending[j].log_likelihood_ratio;
+    ++scored;
+    joint_scored = j;
+  }
+  if (scored == 0) return;
+  // A quasi-static pose pair on every scored joint: the chain's four moves
+  // from the last pose's posterior (ContactAfterPosePair).
+  filter_internal::PoseTransitions pair;
+  pair.valid = options.quasi_static;
+  for (int j = 0; j < 2 && pair.valid; ++j) {
+    if (!pending[j].update || !pending[j].mixture) continue;
+    const auto& t = pending[j].transitions;
+    pair.valid = t.valid;
+    pair.held += t.held, pair.onset += t.onset, pair.release += t.release, pair.free += t.free;
+  }
+  if (pair.valid) {
+    const double shared =
+        filter_internal::ContactAfterPosePair(options, contact_probability[joint_scored], pair);
+    for (int j = 0; j < 2; ++j) {
+      if (pending[j].update && pending[j].mixture) contact_probability[j] = shared;
+    }
+    return;
+  }
+  LearnHold();
+  const double prior = contact_prior[joint_scored];
+  const double prior_log_odds = std::log(prior) - std::log1p(-prior);  // ±inf at 0 and 1
+  const double shared =
+      1.0 / (1.0 + std::exp(-std::clamp(prior_log_odds + log_odds, -700.0, 700.0)));
+  for (int j = 0; j < 2; ++j) {
+    if (pending[j].update && pending[j].mixture) contact_probability[j] = shared;
+  }
+}
+
+// A continuous log's pair windows, closed on this row, on whether a contact
+// would hold the tip: the held law against the moving one (the free arm's),
+// both joints' together; between windows the chance drifts toward even at
+// the contact chain's end rate.
+void ComplianceFilter::Impl::LearnHold() {
+  double log_odds = 0.0;
+  bool closed = false;
+  for (int j = 0; j < 2; ++j) {
+    const auto& t = pending[j].transitions;
+    if (!pending[j].update || !pending[j].mixture || !t.valid) continue;
+    log_odds += t.held - t.free;
+    closed = true;
+  }
+  if (!closed) return;
+  const double drift = -std::expm1(-options.contact_end_rate_hz * filter_internal::kPairWindowS);
+  const double h = held_given_contact * (1.0 - drift) + (1.0 - held_given_contact) * drift;
+  held_given_contact =
+      1.0 / (1.0 + std::exp(std::clamp(std::log1p(-h) - std::log(h) - log_odds, -700.0, 700.0)));
+}
+
+// The evidence for contact from the encoder's travel and the effort's change
+// (QuasiStaticTransitions) between this row and a quasi-static log's last
+// pose, or between a continuous log's last two pair windows (PairWindow).
+// The poses must be at one depth (a clamp re-made elsewhere starts anew) with
+// both encoders read. The learned arm torque's doubt over the change of
+// motion is noise.
+filter_internal::PoseTransitions ComplianceFilter::Impl::PoseChangeEvidence(
+    const FilterSample& sample, int j, double residual, double free_variance) {
+  const double encoder = sample.encoder_rad[j];
+  const InternalTorque& arm = internal_torque[j];
+  const LastPose now{std::isfinite(encoder), encoder, residual, depth,
+                     extra_internal_torque_nm[j], arm.regressor};
+  LastPose& last = options.quasi_static ? last_pose[j] : pair_window[j].previous;
+  LastPose pose = now;
+  filter_internal::PoseTransitions evidence;
+  const bool pair = options.quasi_static
+                        ? last.valid && now.valid &&
+                              std::abs(depth - last.depth_m) <= kMaxHeldDepthChange
+                        : pair_window[j].Add(now, sample.time_s, &pose);
+  if (pair) {
+    const FilterJointState& s = joint[j];
+    const InternalTorque::Vector4 change = pose.arm_regressor - last.arm_regressor;
+    const double internal_change =
+        std::hypot(pose.internal_torque_nm - last.internal_torque_nm,
+                   std::sqrt(change.dot(arm.covariance * change)));
+    evidence = QuasiStaticTransitions(
+        options, pose.residual_nm, pose.residual_nm - last.residual_nm,
+        pose.encoder_rad - last.encoder_rad, s.mean[kScale] * ComplianceAtDepth(j),
+        std::sqrt(s.covariance(kScale, kScale)), delta[j], internal_change, free_variance);
+  }
+  if (options.quasi_static || pair) last = pose;
+  return evidence;
+}
+
+}  // namespace pliant::estimation

@@ -1,0 +1,86 @@
+// The arm's own torque, learned online (filter_internal_torque.h).
+#include "filter_internal_torque.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Cholesky>
+
+namespace pliant::estimation::filter_internal {
+
+void InternalTorque::Start(const FilterOptions& o) {
+  coefficients.setZero();
+  regressor.setZero();
+  information_mean.setZero();
+  const Vector4 sd(o.internal_inertia_sd_kg_m2, o.internal_coulomb_sd_nm,
+                   o.internal_viscous_sd_nm_s, o.internal_bias_error_sd_nm);
+  prior_information = sd.cwiseProduct(sd).cwiseInverse().asDiagonal();
+  information = prior_information;
+  covariance = sd.cwiseProduct(sd).asDiagonal();
+  open = Batch{};
+  oldest = queued = 0;
+}
+
+void InternalTorque::SetMotion(const FilterOptions& o, double velocity, double acceleration) {
+  regressor << acceleration, std::tanh(velocity / o.coulomb_speed_rad_s), velocity, 1.0;
+}
+
+// Why the lesson waits: a push's first rows, while the encoder crosses the
+// clearance at next to no load, move the encoder as a free arm's would and
+// are no contact yet to the chain, which recognises the push a few tenths of
+// a second later. Taught at once, they taught f·tanh(θ̇/v_f) the push's load
+// (0.09 N·m of 0.8, on FilterContact's push), which then left every later
+// push's effort and its correction (6 mrad). Waiting kDelayWindows windows
+// (0.5 s), a window is taught with the weight 1 − the largest contact
+// probability from its first row until then.
+void InternalTorque::Learn(double weight, double residual, double variance,
+                           double contact_probability, double dt_s, double memory_s) {
+  const double p = std::clamp(contact_probability, 0.0, 1.0);
+  open.contact = std::max(open.contact, p);
+  for (int k = 0; k < queued; ++k) {
+    Batch& b = waiting[(oldest + k) % kDelayWindows];
+    b.contact = std::max(b.contact, p);
+  }
+  if (weight > 1e-3 && variance > 0.0) {
+    const double w = weight / variance;
+    open.information.noalias() += w * regressor * regressor.transpose();
+    open.information_mean += (w * residual) * regressor;
+    open.teaching_s += dt_s;
+  }
+  open.duration_s += dt_s;
+  if (open.duration_s < kWindowS) return;
+  if (queued == kDelayWindows) {
+    Teach(waiting[oldest], memory_s);
+    oldest = (oldest + 1) % kDelayWindows;
+    --queued;
+  }
+  waiting[(oldest + queued) % kDelayWindows] = open;
+  ++queued;
+  open = Batch{};
+}
+
+// Weighted least squares with stabilised forgetting, in information form: per
+// batch that teaches (weight w = 1 − its contact probability), the past's
+// information fades over the time its rows taught toward the prior's, not
+// toward none: I ← λ·I + (1 − λ)·I₀ + w·Σφφᵀ/σ², ξ ← λ·ξ + w·Σφ·r/σ² (the prior's
+// mean is 0). Plain exponential forgetting (P ← P/λ) blows up the covariance
+// in the directions a motion does not excite (a constant sign of θ̇ makes
+// tanh(θ̇/v_f), θ̇ and 1 nearly collinear) until rounding makes it indefinite:
+// on the synthetic free motion of filter_contact_test.cpp the arm's torque
+// then jumped to 1.4 N·m and was read as a contact for the rest of the log.
+// Here I ≥ (1 − λ)·I₀ > 0 always, so the coefficients' spread never exceeds
+// the prior's by more than 1/(1 − λ) and the covariance stays positive.
+void InternalTorque::Teach(const Batch& batch, double memory_s) {
+  const double w = 1.0 - batch.contact;
+  if (!(w * batch.teaching_s > 0.0)) return;
+  const double forget = std::exp(-w * batch.teaching_s / memory_s);
+  information = forget * information + (1.0 - forget) * prior_information;
+  information.noalias() += w * batch.information;
+  information_mean = forget * information_mean + w * batch.information_mean;
+  const Eigen::LLT<Eigen::Matrix4d> factor(information);
+  if (factor.info() != Eigen::Success) return;
+  coefficients = factor.solve(information_mean);
+  covariance = factor.solve(Eigen::Matrix4d::Identity());
+}
+
+}  // namespace pliant::estimation::filter_internal

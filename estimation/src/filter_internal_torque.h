@@ -1,0 +1,52 @@
+// The arm's own torque in the effort while it moves (the online filter's,
+// filter_impl.h): inertia J·θ̈, Coulomb friction f·tanh(θ̇/v_f), viscous
+// friction c·θ̇ and the bias table's mean error τ_b, learned online from the
+// rows where nothing touches the instrument (recursive least squares with
+// forgetting; filter_internal_torque.cpp).
+#pragma once
+
+#include <array>
+
+#include <Eigen/Core>
+
+#include "pliant/estimation/filter_options.h"
+
+namespace pliant::estimation::filter_internal {
+
+struct InternalTorque {
+  using Vector4 = Eigen::Matrix<double, 4, 1>;
+  Vector4 coefficients = Vector4::Zero();  // J, f, c, τ_b
+  Eigen::Matrix4d covariance = Eigen::Matrix4d::Zero();
+  // Information form (the fading is done there; filter_internal_torque.cpp says why).
+  Eigen::Matrix4d information = Eigen::Matrix4d::Zero();
+  Eigen::Matrix4d prior_information = Eigen::Matrix4d::Zero();
+  Vector4 information_mean = Vector4::Zero();  // information · coefficients
+  Vector4 regressor = Vector4::Zero();     // this row's (θ̈, tanh(θ̇/v_f), θ̇, 1)
+  void Start(const FilterOptions& o);
+  void SetMotion(const FilterOptions& o, double velocity_rad_s, double acceleration_rad_s2);
+  double Torque() const { return coefficients.dot(regressor); }
+  double Variance() const { return regressor.dot(covariance * regressor); }
+  // A row's lesson (weight: how much the arm moves as a free arm), taught
+  // only once the contact chain has had kDelayWindows windows to say whether
+  // something touched the instrument then (Batch).
+  void Learn(double weight, double residual, double variance, double contact_probability,
+             double dt_s, double memory_s);
+
+  // The rows of one window of duration kWindowS: their information, and the
+  // largest contact probability from their first row until they are taught.
+  struct Batch {
+    Eigen::Matrix4d information = Eigen::Matrix4d::Zero();
+    Vector4 information_mean = Vector4::Zero();
+    double teaching_s = 0.0, duration_s = 0.0, contact = 0.0;
+  };
+  static constexpr double kWindowS = 0.05;
+  static constexpr int kDelayWindows = 10;
+  Batch open;
+  std::array<Batch, kDelayWindows> waiting;
+  int oldest = 0, queued = 0;
+
+ private:
+  void Teach(const Batch& batch, double memory_s);
+};
+
+}  // namespace pliant::estimation::filter_internal
