@@ -146,7 +146,8 @@ PoseTransitions QuasiStaticTransitions(const FilterOptions& o, double residual,
   return t;
 }
 
-bool PairWindow::Add(const LastPose& row, double time_s, LastPose* closed) {
+bool PairWindow::Add(const LastPose& row, double time_s, double min_travel_rad,
+                     LastPose* closed) {
   if (!row.valid || !std::isfinite(time_s)) {
     Restart();
     return false;
@@ -155,6 +156,7 @@ bool PairWindow::Add(const LastPose& row, double time_s, LastPose* closed) {
   if (rows == 0) {
     sum = row;
     start_s = time_s;
+    first_encoder_rad = row.encoder_rad;
   } else {
     sum.encoder_rad += row.encoder_rad;
     sum.residual_nm += row.residual_nm;
@@ -162,7 +164,12 @@ bool PairWindow::Add(const LastPose& row, double time_s, LastPose* closed) {
     sum.arm_regressor += row.arm_regressor;
   }
   ++rows;
-  if (time_s - start_s < kPairWindowS) return false;
+  const double elapsed = time_s - start_s;
+  if (elapsed < kPairWindowS) return false;
+  if (std::abs(row.encoder_rad - first_encoder_rad) < min_travel_rad && elapsed < kMaxPairWindowS) {
+    return false;
+  }
+  closed_duration_s = elapsed;
   LastPose mean = sum;
   mean.encoder_rad /= rows, mean.residual_nm /= rows, mean.internal_torque_nm /= rows;
   mean.arm_regressor /= rows;

@@ -76,10 +76,20 @@ void ComplianceFilter::Impl::LearnHold() {
     closed = true;
   }
   if (!closed) return;
-  const double drift = -std::expm1(-options.contact_end_rate_hz * filter_internal::kPairWindowS);
+  const double window_s =
+      std::max(pair_window[0].closed_duration_s, pair_window[1].closed_duration_s);
+  const double drift = -std::expm1(-options.contact_end_rate_hz * window_s);
   const double h = held_given_contact * (1.0 - drift) + (1.0 - held_given_contact) * drift;
   held_given_contact =
       1.0 / (1.0 + std::exp(std::clamp(std::log1p(-h) - std::log(h) - log_odds, -700.0, 700.0)));
+}
+
+// The encoder's travel over which a held shaft's bend shows above a pose
+// pair's effort noise: four of its standard deviations, √2·σ_e, as a bend.
+double ComplianceFilter::Impl::PairTravel(int j) {
+  constexpr double kNoiseMultiple = 4.0;
+  return kNoiseMultiple * std::sqrt(2.0) * options.effort_noise_nm *
+         std::abs(joint[j].mean[kScale] * ComplianceAtDepth(j));
 }
 
 // The evidence for contact from the encoder's travel and the effort's change
@@ -100,7 +110,7 @@ filter_internal::PoseTransitions ComplianceFilter::Impl::PoseChangeEvidence(
   const bool pair = options.quasi_static
                         ? last.valid && now.valid &&
                               std::abs(depth - last.depth_m) <= kMaxHeldDepthChange
-                        : pair_window[j].Add(now, sample.time_s, &pose);
+                        : pair_window[j].Add(now, sample.time_s, PairTravel(j), &pose);
   if (pair) {
     const FilterJointState& s = joint[j];
     const InternalTorque::Vector4 change = pose.arm_regressor - last.arm_regressor;

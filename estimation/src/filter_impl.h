@@ -116,21 +116,25 @@ struct LastPose {
   double internal_torque_nm = 0.0;  // the parameters' further effects' (held friction)
   Eigen::Matrix<double, 4, 1> arm_regressor = Eigen::Matrix<double, 4, 1>::Zero();
 };
-// A continuous log's rows in windows of kPairWindowS that do not overlap
-// (each row's noise counted once): the means of two consecutive windows are a
-// pose pair. Means, because a row's acceleration (and so its inertial doubt)
-// flickers with the encoder's counts while a window's mean is the change of
-// its speed; the effort's noise of a mean is taken as one row's, which no
-// correlation between rows can exceed.
-constexpr double kPairWindowS = 0.05;
+// A continuous log's rows in windows that do not overlap (each row's noise
+// counted once): the means of two consecutive windows are a pose pair. A
+// window lasts kPairWindowS at least, and until the encoder has moved by
+// `min_travel_rad` (a bend that would show above the effort's noise) or
+// kMaxPairWindowS has passed: a slow push's bend shows over a longer span.
+// Means, because a row's acceleration (and so its inertial doubt) flickers
+// with the encoder's counts while a window's mean is the change of its speed;
+// the effort's noise of a mean is taken as one row's, which no correlation
+// between rows can exceed.
+constexpr double kPairWindowS = 0.05, kMaxPairWindowS = 1.0;
 struct PairWindow {
   int rows = 0;
-  double start_s = 0.0;
+  double start_s = 0.0, first_encoder_rad = 0.0;
+  double closed_duration_s = 0.0;  // the last closed window's
   LastPose sum, previous;  // this window's sums (depth: its first row's); the last window's means
   void Restart() { rows = 0, previous.valid = false; }
   // Adds a row; true when it closes a window whose means follow a previous
   // window's at one depth (then `previous` is the earlier, `closed` this one).
-  bool Add(const LastPose& row, double time_s, LastPose* closed);
+  bool Add(const LastPose& row, double time_s, double min_travel_rad, LastPose* closed);
 };
 // log[(e^(held − free) + 1)/2]: a contact holds the tip (the load follows
 // the bend) or, with even odds, moves with the arm (its load changes as a
@@ -222,6 +226,7 @@ struct ComplianceFilter::Impl {
   void ShareContact();
   double HeldShare(const FilterSample& sample, int j) const;
   void LearnHold();
+  double PairTravel(int j);
   void FinishEffort(const FilterSample& sample, int j, bool unloaded, StepTally* tally);
   FilterEstimate Output(const FilterSample& newest);
 
