@@ -30,8 +30,10 @@ void ComplianceFilter::Impl::Predict(int j, double dt, bool tip_fixed, bool seat
   // the encoder increment: nothing holds an unloaded shaft on a wall, but it
   // only leaves it when the arm moves (a joint at rest keeps its offset).
   // Held tip: the encoders see b, and an arm moving against a held tip loads
-  // the shaft toward a wall rather than freeing it, so b keeps its memory.
-  const double relax = tip_fixed ? 0.0 : BacklashRelax(o, dt, encoder_increment);
+  // the shaft toward a wall rather than freeing it, so b keeps its memory;
+  // without the hint, so does the share of the increment a held contact bends.
+  const double held = tip_fixed ? 1.0 : std::clamp(held_share, 0.0, 1.0);
+  const double relax = tip_fixed ? 0.0 : BacklashRelax(o, dt, (1.0 - held) * encoder_increment);
   const StateJet tau(s.mean[kTorque], kTorque);
   const StateJet b(s.mean[kBacklash], kBacklash);
   // The shaft's wall is at the instrument's clearance δ + e, not the nominal δ.
@@ -68,7 +70,6 @@ void ComplianceFilter::Impl::Predict(int j, double dt, bool tip_fixed, bool seat
   row *= bound.row_scale;
   const double pbb = bound.row_scale * bound.row_scale * propagated;
 
-  const double held = tip_fixed ? 1.0 : std::clamp(held_share, 0.0, 1.0);
   s.mean[kTip] += (1.0 - held) * encoder_increment;
   s.mean[kBacklash] = next.a;
 
