@@ -115,7 +115,7 @@ struct PushOutcome {
   Eigen::Vector2d equation2_rms_rad{0, 0};  // and equation (2)'s
 };
 
-PushOutcome Push(unsigned seed, double rate_hz = kRate) {
+PushOutcome Push(unsigned seed, double rate_hz = kRate, double ramp_s = 1.0) {
   const auto p = models::testing::PaperParameters();
   const FilterOptions o;
   std::mt19937_64 rng(seed);
@@ -127,9 +127,10 @@ PushOutcome Push(unsigned seed, double rate_hz = kRate) {
   Eigen::Vector2d backlash = Eigen::Vector2d::Zero();
   PushOutcome out;
   int loaded = 0;
-  for (int k = 0; k < int(3.0 * rate_hz); ++k) {
+  const double end_s = 2.0 + ramp_s;
+  for (int k = 0; k < int(end_s * rate_hz); ++k) {
     const double t = k / rate_hz;
-    const Eigen::Vector2d load = push * std::clamp(t - 0.5, 0.0, 1.0);
+    const Eigen::Vector2d load = push * std::clamp((t - 0.5) / ramp_s, 0.0, 1.0);
     FilterSample s;
     s.time_s = t;
     s.insertion_depth_m = depth;
@@ -144,7 +145,7 @@ PushOutcome Push(unsigned seed, double rate_hz = kRate) {
     }
     const FilterEstimate e = filter.Step(s);
     if (e.contact_probability.minCoeff() > 0.99) out.recognised_s = std::min(out.recognised_s, t);
-    if (t >= 2.0) {
+    if (t >= end_s - 1.0) {
       out.hold_worst_rad = out.hold_worst_rad.cwiseMax((e.corrected_rad - tip).cwiseAbs());
     }
     if (t > 0.5) {
@@ -193,6 +194,23 @@ TEST(FilterContact, APushIsRecognisedAtTheSameLoadWhateverTheSampleRate) {
       EXPECT_LT(r.hold_worst_rad.maxCoeff(), 1.5e-3) << "seed " << seed;
       EXPECT_LT(r.loaded_rms_rad[1], r.equation2_rms_rad[1]) << "seed " << seed;
     }
+  }
+}
+
+// The same load over 8 s (0.1 N·m/s): a 50 ms window sees 0.3 mrad of bend on
+// joint 1, under a pair's effort noise, so a window lasts until the encoder
+// has moved by four of its standard deviations as a bend (0.6 s here).
+// Measured (seeds 1-2): recognised at 4.3-4.4 s (a load of 0.38 N·m), the
+// hold within 2.7-2.8 / 0.6-0.7 mrad (the arm's torque learned some of the
+// 3.8 s of unrecognised load: its lesson waits 0.5 s only). Short of equation
+// (2) on joint 1 (12.1 mrad RMS over the push against 3.3-3.4), better on
+// joint 2 (3.9 against 7.9-8.0).
+TEST(FilterContact, ASlowPushIsRecognisedByItsBend) {
+  for (unsigned seed = 1; seed <= 2; ++seed) {
+    const PushOutcome r = Push(seed, 100.0, 8.0);
+    EXPECT_LT(r.recognised_s, 5.0) << "seed " << seed;
+    EXPECT_LT(r.hold_worst_rad.maxCoeff(), 3.5e-3) << "seed " << seed;
+    EXPECT_LT(r.loaded_rms_rad[1], r.equation2_rms_rad[1]) << "seed " << seed;
   }
 }
 
