@@ -121,7 +121,7 @@ void ComplianceFilter::Impl::Reset() {
         (options.contact_start_rate_hz + options.contact_end_rate_hz);
     contact_onset[j] = 0.0;
     last_pose[j] = filter_internal::LastPose{};
-    pair_window[j].Restart();
+    pair_window[j] = filter_internal::PairWindow{};
     free_motion[j] = filter_internal::FreeArmMotion{};
     unmodelled[j].variance = options.moving_effort_sd_nm * options.moving_effort_sd_nm;
     internal_torque[j].Start(options);

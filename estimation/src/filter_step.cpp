@@ -119,7 +119,13 @@ void ComplianceFilter::Impl::AdvanceState(const FilterSample& sample, double pre
 // load of spread σ_c. Only without the tip_fixed hint.
 double ComplianceFilter::Impl::ContactOnsetVariance(const FilterSample& sample, int j, double dt) {
   if (!options.infer_contact || sample.tip_fixed) return 0.0;
-  const ContactPrior prior = MixContact(options, contact_probability[j], dt);
+  // The chain's clock runs with the arm: a still arm neither starts nor ends
+  // a contact, but at a tenth of the rate (the tissue may still move).
+  double speed = 0.0;
+  for (int k = 0; k < 2; ++k) speed = std::max(speed, std::abs(motion[k].velocity_rad_s));
+  const double moving = std::min(1.0, speed / options.unmodelled_effort_speed_rad_s);
+  const double chain_dt = options.quasi_static ? dt : dt * (0.1 + 0.9 * moving);
+  const ContactPrior prior = MixContact(options, contact_probability[j], chain_dt);
   contact_prior[j] = prior.probability;
   const double sd = options.contact_load_sd_nm;
   return (1.0 - prior.continuing) * sd * sd;
@@ -256,10 +262,11 @@ void ComplianceFilter::Impl::UpdateEffort(const FilterSample& sample, int j, boo
     const double held_evidence =
         options.quasi_static ? (transitions.valid ? transitions.held - transitions.free : 0.0)
                              : filter_internal::HeldWindowEvidence(transitions);
-    // A load's level, like the table's error, holds over many rows: rows
-    // closer than a pair window are one look at it, not many.
-    const double level_weight =
-        options.quasi_static ? 1.0 : std::min(1.0, step_dt / filter_internal::kPairWindowS);
+    // A load's level, like the table's error, holds over many rows: the rows
+    // of a pair window (as long as the last one closed) are one look at it.
+    const double look_s =
+        std::max(filter_internal::kPairWindowS, pair_window[j].closed_duration_s);
+    const double level_weight = options.quasi_static ? 1.0 : std::min(1.0, step_dt / look_s);
     log_likelihood_ratio =
         ContactLogLikelihoodRatio(residual, sd_c * sd_c + free_variance, residual, free_variance,
                                   dof, held_evidence, level_weight);
