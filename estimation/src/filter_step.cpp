@@ -77,6 +77,10 @@ void ComplianceFilter::Impl::AdvanceState(const FilterSample& sample, double pre
   const bool released =
       sample.tip_fixed && last_tip_fixed && std::abs(depth - previous_depth) > kMaxHeldDepthChange;
   const double gap_s = sample.time_s - state_clock.last_time;
+  // A hold the hint ends: what the pair windows knew of it is no free arm's.
+  if (last_tip_fixed && !sample.tip_fixed) {
+    for (auto& window : pair_window) window = filter_internal::PairWindow{};
+  }
   Eigen::Vector2d increment;
   // A quasi-static log's t is a pose index: the encoder's step is judged per row, not per second.
   FilterSample timed = sample;
