@@ -1,7 +1,7 @@
 // The contact chain's evidence on each step of the filter (filter_step.cpp):
 // both joints' shared posterior, the pose pairs that say whether a load
 // follows the encoder, and the chance that a contact holds the tip.
-// docs/decisions/contact-prior.md says why.
+// docs/decisions/contact-prior.md and contact-pair-windows.md say why.
 #include <algorithm>
 #include <cmath>
 

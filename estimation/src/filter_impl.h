@@ -104,7 +104,7 @@ struct PendingEffort {
   bool update = false, mixture = false;
   double residual = 0.0, variance = 0.0, moving = 0.0, rest = 0.0, arm_torque = 0.0;
   double log_likelihood_ratio = 0.0;
-  PoseTransitions transitions;  // quasi-static logs only
+  PoseTransitions transitions;  // a quasi-static pose pair, or a continuous log's closed window
 };
 // A quasi-static log's last pose, per joint, for QuasiStaticTransitions; in a
 // continuous log, the means over a pair window's rows (PairWindow).
@@ -114,7 +114,7 @@ struct LastPose {
   double residual_nm = 0.0;
   double depth_m = 0.0;
   double internal_torque_nm = 0.0;  // the parameters' further effects' (held friction)
-  Eigen::Matrix<double, 4, 1> arm_regressor = Eigen::Matrix<double, 4, 1>::Zero();
+  InternalTorque::Vector4 arm_regressor = InternalTorque::Vector4::Zero();
 };
 // A continuous log's rows in windows that do not overlap (each row's noise
 // counted once): the means of two consecutive windows are a pose pair. A
