@@ -35,12 +35,7 @@ void InternalTorque::SetMotion(const FilterOptions& o, double velocity, double a
 // probability from its first row until then.
 void InternalTorque::Learn(double weight, double residual, double variance,
                            double contact_probability, double dt_s, double memory_s) {
-  const double p = std::clamp(contact_probability, 0.0, 1.0);
-  open.contact = std::max(open.contact, p);
-  for (int k = 0; k < queued; ++k) {
-    Batch& b = waiting[(oldest + k) % kDelayWindows];
-    b.contact = std::max(b.contact, p);
-  }
+  open.contact = std::max(open.contact, std::clamp(contact_probability, 0.0, 1.0));
   if (weight > 1e-3 && variance > 0.0) {
     const double w = weight / variance;
     open.information.noalias() += w * regressor * regressor.transpose();
@@ -50,7 +45,14 @@ void InternalTorque::Learn(double weight, double residual, double variance,
   open.duration_s += dt_s;
   if (open.duration_s < kWindowS) return;
   if (queued == kDelayWindows) {
-    Teach(waiting[oldest], memory_s);
+    // The largest contact probability from the oldest batch's first row
+    // until now: its own and every later batch's, each the largest of its rows.
+    Batch& due = waiting[oldest];
+    for (int k = 1; k < queued; ++k) {
+      due.contact = std::max(due.contact, waiting[(oldest + k) % kDelayWindows].contact);
+    }
+    due.contact = std::max(due.contact, open.contact);
+    Teach(due, memory_s);
     oldest = (oldest + 1) % kDelayWindows;
     --queued;
   }

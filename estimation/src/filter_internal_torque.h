@@ -33,7 +33,8 @@ struct InternalTorque {
              double dt_s, double memory_s);
 
   // The rows of one window of duration kWindowS: their information, and the
-  // largest contact probability from their first row until they are taught.
+  // largest contact probability over them (at teaching, from their first row
+  // until then: Learn takes the later batches' too).
   struct Batch {
     Eigen::Matrix4d information = Eigen::Matrix4d::Zero();
     Vector4 information_mean = Vector4::Zero();
