@@ -120,6 +120,9 @@ void ComplianceFilter::Impl::Reset() {
         options.contact_start_rate_hz /
         (options.contact_start_rate_hz + options.contact_end_rate_hz);
     contact_onset[j] = 0.0;
+    ClearBranches(j);
+    branch_last[j] = branch_continuing[j] = 0.0;
+    last_gain.setZero();
     last_pose[j] = filter_internal::LastPose{};
     pair_window[j] = filter_internal::PairWindow{};
     free_motion[j] = filter_internal::FreeArmMotion{};
@@ -220,7 +223,10 @@ void ComplianceFilter::Impl::ScalarUpdate(int j, Channel channel, const Vector& 
     tally->window_nis += std::isfinite(nis) ? std::min(nis, 2.0 * gate) : 2.0 * gate;
     tally->window_dof += 1;
     tally->flags |= kFlagRejected;
-    if (++rejected < options.reacquire_after || !std::isfinite(S)) return;
+    if (++rejected < options.reacquire_after || !std::isfinite(S)) {
+      last_gain.setZero();
+      return;
+    }
     // Re-acquire. Effort: the torque back to its prior spread. Encoder: the
     // backlash back to its prior, and the tip as uncertain as the part of the
     // innovation the clearance cannot explain (a slip, or a start from a bad
@@ -276,6 +282,7 @@ void ComplianceFilter::Impl::ScalarUpdate(int j, Channel channel, const Vector& 
   const Vector v = 0.5 * S * k - u;
   P += k * v.transpose() + v * k.transpose();
   s.mean += k * innovation;
+  last_gain = k;
   tally->nis += nis;
   tally->dof += 1;
 }

@@ -228,6 +228,17 @@ struct ComplianceFilter::Impl {
   void LearnHold();
   double PairTravel(int j);
   void FinishEffort(const FilterSample& sample, int j, bool unloaded, StepTally* tally);
+  void UpdateEffortBranches(const FilterSample& sample, int j, bool unloaded, StepTally* tally);
+  void PredictBranchGap(int j, double encoder_increment, double load_step, double backlash_gap);
+  void UpdateBranches(int j, const Vector& h) {
+    branch_gap[j] -= last_gain * h.dot(branch_gap[j]);
+    branch_spread[j] -= last_gain * h.dot(branch_spread[j]);
+  }
+  void ClearBranches(int j) {
+    branch_gap[j].setZero();
+    branch_spread[j].setZero();
+  }
+  double BranchBacklashGap(int j, double dt, double encoder_increment, double clearance_rad);
   FilterEstimate Output(const FilterSample& newest);
 
   void Initialise(const FilterSample& sample, double depth);
@@ -314,6 +325,20 @@ struct ComplianceFilter::Impl {
   double contact_probability[2] = {1.0, 1.0};
   double contact_prior[2] = {1.0, 1.0};
   double contact_onset[2] = {0.0, 0.0};
+  // The state is the mixture of a contact branch and a free one; what they
+  // differ by in mean (contact − free) is kept, so that a contact recognised
+  // late brings the load and the tip its branch has followed (IMM's two
+  // estimates, sharing one covariance). The contact prior's make-up this step:
+  // the last posterior p and the share w1 of the prior that goes on from it.
+  Vector branch_gap[2];
+  // The branches' spread in the state's covariance, P = P_w + E·Eᵀ with
+  // E = √(p(1 − p))·D at the last collapse, carried through the same linear
+  // maps as P since, so that the next effort's update takes it out again
+  // (each branch's own covariance is P_w) instead of adding it once more.
+  Vector branch_spread[2];
+  double branch_last[2] = {0.0, 0.0};
+  double branch_continuing[2] = {0.0, 0.0};
+  Vector last_gain;  // ScalarUpdate's last gain (0: rejected)
   // Given a contact, the chance that it holds the tip (its load follows the
   // bend) rather than moving with the arm: the pair windows' evidence
   // (HeldWindowEvidence's two laws), persisting as the contact chain does.

@@ -47,6 +47,8 @@ void ComplianceFilter::Impl::Predict(int j, double dt, bool tip_fixed, bool seat
   if (seated) walls[j].Seat();
   if (tip_fixed) walls[j].Observe(hold);
   const StateJet next = models::BacklashHysteresisStep(b, tau, clearance, width[j], relax, hold);
+  const double branch_backlash_gap =
+      tip_fixed ? 0.0 : BranchBacklashGap(j, dt, encoder_increment, clearance.a);
   // How firmly the load holds the shaft on a wall: S² = 1 beyond the width,
   // 0 at no load (BacklashProcessVariance).
   const double saturation = models::SmoothSaturation(sure_load / width[j]);
@@ -129,6 +131,7 @@ void ComplianceFilter::Impl::Predict(int j, double dt, bool tip_fixed, bool seat
   t.f_backlash_clearance = fbe;
   t.process_noise = q;
   t.predicted = true;
+  PredictBranchGap(j, encoder_increment, load_step, branch_backlash_gap);
 }
 
 // Released and held again elsewhere, after a transit the log does not show
@@ -160,6 +163,7 @@ void ComplianceFilter::Impl::Release(int j, double dt, double encoder_increment)
   q[kTorque] = prior(kTorque, kTorque);
   q[kBacklash] = prior(kBacklash, kBacklash);
   P.diagonal() += q;
+  ClearBranches(j);
   t.predicted_mean = s.mean;
   t.f_torque_torque = t.f_torque_scale = 0.0;
   t.f_backlash_torque = t.f_backlash_clearance = 0.0;
@@ -195,6 +199,7 @@ void ComplianceFilter::Impl::Reinitialise(int j, const FilterSample& sample, boo
   transition[j].process_noise[kTorque] += prior(kTorque, kTorque);
   for (int& r : rejections[j]) r = 0;
   restart_output[j] = true;
+  ClearBranches(j);
   free_motion[j].started = false;  // z jumps with the pose
   // A continuous log's pair window does not span a jump or a gap; a
   // quasi-static log's every row re-initialises and pairs with the last pose.

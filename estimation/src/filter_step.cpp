@@ -130,6 +130,8 @@ double ComplianceFilter::Impl::ContactOnsetVariance(const FilterSample& sample, 
   const double moving = std::min(1.0, speed / options.unmodelled_effort_speed_rad_s);
   const double chain_dt = options.quasi_static ? dt : dt * (0.1 + 0.9 * moving);
   const ContactPrior prior = MixContact(options, contact_probability[j], chain_dt);
+  branch_last[j] = contact_probability[j];
+  branch_continuing[j] = prior.continuing;
   contact_prior[j] = prior.probability;
   const double sd = options.contact_load_sd_nm;
   return (1.0 - prior.continuing) * sd * sd;
@@ -168,12 +170,14 @@ void ComplianceFilter::Impl::UpdateMeasurements(const FilterSample& sample, Step
                  options.encoder_noise_rad * options.encoder_noise_rad + deflection * deflection +
                      coupling_variance[j],
                  tally, false, ConsiderFor(sample, j, unloaded));
+    UpdateBranches(j, h[j]);  // both branches see the encoder through the shared gain
   }
   for (int j = 0; j < 2; ++j) {
     const double ref = sample.reference_rad[j];
     if (!std::isfinite(ref)) continue;  // most logs have no reference: not "missing"
     ScalarUpdate(j, kReferenceChannel, Vector::Unit(kTip), ref - joint[j].mean[kTip],
                  options.reference_noise_rad * options.reference_noise_rad, tally);
+    UpdateBranches(j, Vector::Unit(kTip));
   }
 }
 
@@ -198,6 +202,7 @@ void ComplianceFilter::Impl::UpdateEffort(const FilterSample& sample, int j, boo
     if (mixture) {  // the chain's prediction alone
       contact_probability[j] = contact_prior[j];
       CollapseContact(&joint[j], contact_probability[j]);
+      ClearBranches(j);  // (the spread stays in P: the doubt is kept)
     }
     return;
   }
@@ -297,10 +302,14 @@ void ComplianceFilter::Impl::FinishEffort(const FilterSample& sample, int j, boo
                                options.internal_torque_memory_s);
     }
   }
+  if (e.mixture) {
+    UpdateEffortBranches(sample, j, unloaded, tally);
+    return;
+  }
+  ClearBranches(j);
   ScalarUpdate(j, kEffortChannel, Vector::Unit(kTorque) + Vector::Unit(kOffset),
                e.residual - joint[j].mean[kTorque], e.variance, tally, false,
                ConsiderFor(sample, j, unloaded));
-  if (e.mixture) CollapseContact(&joint[j], contact_probability[j]);
 }
 
 // The speed of z = q_enc − s·K(L)·r (FreeArmMotion), r the effort less the
