@@ -121,7 +121,7 @@ void ComplianceFilter::Impl::Reset() {
         (options.contact_start_rate_hz + options.contact_end_rate_hz);
     contact_onset[j] = 0.0;
     ClearBranches(j);
-    branch_last[j] = branch_continuing[j] = 0.0;
+    branch_last[j] = branch_continuing[j] = branch_ended[j] = 0.0;
     last_gain.setZero();
     last_pose[j] = filter_internal::LastPose{};
     pair_window[j] = filter_internal::PairWindow{};

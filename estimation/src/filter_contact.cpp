@@ -48,6 +48,8 @@ ContactPrior MixContact(const FilterOptions& o, double probability, double dt) {
   const double stays = probability * (1.0 - chance.end);
   m.probability = stays + (1.0 - probability) * chance.start;
   m.continuing = m.probability > 0.0 ? stays / m.probability : 0.0;
+  const double ends = probability * chance.end;
+  m.ended = m.probability < 1.0 ? ends / (1.0 - m.probability) : 0.0;
   return m;
 }
 

@@ -6,7 +6,6 @@
 #include <cmath>
 
 #include "filter_impl.h"
-#include "pliant/models/effects/backlash_hysteresis.h"
 
 namespace pliant::estimation {
 
@@ -130,11 +129,13 @@ filter_internal::PoseTransitions ComplianceFilter::Impl::PoseChangeEvidence(
 // The effort's update of both branches (filter_impl.h, branch_gap). The
 // contact prior is the last contact going on (share w1) or a new one from the
 // free branch, the slab's onset in the covariance (ContactOnsetVariance); the
-// free branch's is its own. One covariance: the same gain updates both means,
-// and the free branch is then conditioned on tau = 0. The state becomes their
-// mixture at the posterior p, moment-matched:
-//   x = p·x_c + (1 − p)·x_f,  P = P_c − (1 − p)·P_c e_tau e_tauᵀ P_c / P_c,tautau + p(1 − p)·D Dᵀ,
-// D = x_c − x_f (with D = 0 before, the slab's collapse, CollapseContact).
+// free prior is the free branch going on or the last contact ending (share
+// u): x_c,prior = x + (w1 − p)·D, x_f,prior = x + (u − p)·D (IMM's mixing).
+// One covariance, each branch's P_w = P − E·Eᵀ: the same gain updates both
+// means, and the free branch is then conditioned on tau = 0. The state
+// becomes their mixture at the posterior p, moment-matched:
+//   x = p·x_c + (1 − p)·x_f,  P = P_c − (1 − p)·P_c e_tau e_tauᵀ P_c / P_c,tautau + E·Eᵀ,
+// D = x_c − x_f, E = √(p(1 − p))·D (with D = 0 before: the slab's collapse, CollapseContact).
 void ComplianceFilter::Impl::UpdateEffortBranches(const FilterSample& sample, int j, bool unloaded,
                                                   StepTally* tally) {
   const PendingEffort& e = pending[j];
@@ -149,7 +150,7 @@ void ComplianceFilter::Impl::UpdateEffortBranches(const FilterSample& sample, in
   const Vector h = Vector::Unit(kTorque) + Vector::Unit(kOffset);
   ScalarUpdate(j, kEffortChannel, h, e.residual - to_contact * gap[kOffset] - s.mean[kTorque],
                e.variance, tally, false, ConsiderFor(sample, j, unloaded));
-  Vector free = -w1 * gap;  // x_f,prior − x_c,prior
+  Vector free = (branch_ended[j] - w1) * gap;  // x_f,prior − x_c,prior
   free -= last_gain * h.dot(free);
   free += s.mean;
   const double p_tau = P(kTorque, kTorque);
@@ -168,45 +169,20 @@ void ComplianceFilter::Impl::UpdateEffortBranches(const FilterSample& sample, in
   P.noalias() += spread * spread.transpose();
 }
 
-// The branches' shafts after this step's prediction, each moved by its own
-// load and hold (the hysteresis step is far from linear between a contact's
-// load and none): the contact branch's offset less the free one's. Taken
-// before the state's prediction.
-double ComplianceFilter::Impl::BranchBacklashGap(int j, double dt, double encoder_increment,
-                                                 double clearance_rad) {
-  const Vector& gap = branch_gap[j];
-  if (!options.infer_contact || gap.isZero()) return 0.0;
-  const FilterJointState& s = joint[j];
-  const double p = contact_probability[j];
-  const double held = held_given_contact;
-  double next[2];
-  for (int branch = 0; branch < 2; ++branch) {  // 0: contact, 1: free
-    const double share = branch == 0 ? 1.0 - p : -p;
-    const double tau = s.mean[kTorque] + share * gap[kTorque];
-    const double b = s.mean[kBacklash] + share * gap[kBacklash];
-    const double moved = branch == 0 ? (1.0 - held) * encoder_increment : encoder_increment;
-    const double hold = models::BacklashHold(
-        SureLoad(options, tau, s.covariance(kTorque, kTorque)), width[j]);
-    next[branch] = models::BacklashHysteresisStep(b, tau, clearance_rad, width[j],
-                                                  BacklashRelax(options, dt, moved), hold);
-  }
-  return next[0] - next[1];
-}
-
-// The branches' means through the prediction: F's tau row, each shaft its
-// own (BranchBacklashGap), and a held contact's tip stays while its load
-// follows the bend where the free tip follows the encoder.
-void ComplianceFilter::Impl::PredictBranchGap(int j, double encoder_increment, double load_step,
-                                              double backlash_gap) {
-  Vector& gap = branch_gap[j];
+// The branches' means through the prediction: F (b's row, tau's), and a
+// held contact's tip stays while its load follows the bend where the free
+// tip follows the encoder. (Each branch's shaft stepped at its own load
+// served the filter a little but not the smoother, whose F does not know it:
+// docs/decisions/contact-branches.md.)
+void ComplianceFilter::Impl::PredictBranchGap(int j, double encoder_increment, double load_step) {
   const FilterTransition& t = transition[j];
-  gap[kBacklash] = backlash_gap;
-  gap[kTorque] = t.f_torque_torque * gap[kTorque] + t.f_torque_scale * gap[kScale];
-  Vector& spread = branch_spread[j];  // F·E, as P is F·P·Fᵀ
-  spread[kBacklash] = t.f_backlash_torque * spread[kTorque] +
-                      t.f_backlash_backlash * spread[kBacklash] +
-                      t.f_backlash_clearance * spread[kClearance];
-  spread[kTorque] = t.f_torque_torque * spread[kTorque] + t.f_torque_scale * spread[kScale];
+  for (Vector* v : {&branch_gap[j], &branch_spread[j]}) {  // D and E both by F, as P is F·P·Fᵀ
+    Vector& x = *v;
+    x[kBacklash] = t.f_backlash_torque * x[kTorque] + t.f_backlash_backlash * x[kBacklash] +
+                   t.f_backlash_clearance * x[kClearance];
+    x[kTorque] = t.f_torque_torque * x[kTorque] + t.f_torque_scale * x[kScale];
+  }
+  Vector& gap = branch_gap[j];
   const double contact_held = contact_probability[j] > 0.0 && options.infer_contact
                                   ? held_given_contact : 0.0;
   gap[kTip] -= contact_held * encoder_increment;

@@ -70,6 +70,7 @@ struct ExtraDeflection {
 struct ContactPrior {
   double probability = 0.0;  // of contact, before this step's effort
   double continuing = 0.0;   // the share of it that is the last step's contact going on
+  double ended = 0.0;        // the share of no contact that is the last step's contact ending
 };
 ContactPrior MixContact(const FilterOptions& o, double probability, double dt);
 // The evidence for contact from the slab's innovation (and its variance) and the
@@ -229,7 +230,7 @@ struct ComplianceFilter::Impl {
   double PairTravel(int j);
   void FinishEffort(const FilterSample& sample, int j, bool unloaded, StepTally* tally);
   void UpdateEffortBranches(const FilterSample& sample, int j, bool unloaded, StepTally* tally);
-  void PredictBranchGap(int j, double encoder_increment, double load_step, double backlash_gap);
+  void PredictBranchGap(int j, double encoder_increment, double load_step);
   void UpdateBranches(int j, const Vector& h) {
     branch_gap[j] -= last_gain * h.dot(branch_gap[j]);
     branch_spread[j] -= last_gain * h.dot(branch_spread[j]);
@@ -238,7 +239,6 @@ struct ComplianceFilter::Impl {
     branch_gap[j].setZero();
     branch_spread[j].setZero();
   }
-  double BranchBacklashGap(int j, double dt, double encoder_increment, double clearance_rad);
   FilterEstimate Output(const FilterSample& newest);
 
   void Initialise(const FilterSample& sample, double depth);
@@ -329,7 +329,8 @@ struct ComplianceFilter::Impl {
   // differ by in mean (contact − free) is kept, so that a contact recognised
   // late brings the load and the tip its branch has followed (IMM's two
   // estimates, sharing one covariance). The contact prior's make-up this step:
-  // the last posterior p and the share w1 of the prior that goes on from it.
+  // the last posterior p, the share w1 of the contact prior that goes on
+  // from the contact branch, and the share u of the free prior that does.
   Vector branch_gap[2];
   // The branches' spread in the state's covariance, P = P_w + E·Eᵀ with
   // E = √(p(1 − p))·D at the last collapse, carried through the same linear
@@ -338,6 +339,7 @@ struct ComplianceFilter::Impl {
   Vector branch_spread[2];
   double branch_last[2] = {0.0, 0.0};
   double branch_continuing[2] = {0.0, 0.0};
+  double branch_ended[2] = {0.0, 0.0};
   Vector last_gain;  // ScalarUpdate's last gain (0: rejected)
   // Given a contact, the chance that it holds the tip (its load follows the
   // bend) rather than moving with the arm: the pair windows' evidence

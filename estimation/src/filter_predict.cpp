@@ -47,8 +47,6 @@ void ComplianceFilter::Impl::Predict(int j, double dt, bool tip_fixed, bool seat
   if (seated) walls[j].Seat();
   if (tip_fixed) walls[j].Observe(hold);
   const StateJet next = models::BacklashHysteresisStep(b, tau, clearance, width[j], relax, hold);
-  const double branch_backlash_gap =
-      tip_fixed ? 0.0 : BranchBacklashGap(j, dt, encoder_increment, clearance.a);
   // How firmly the load holds the shaft on a wall: S² = 1 beyond the width,
   // 0 at no load (BacklashProcessVariance).
   const double saturation = models::SmoothSaturation(sure_load / width[j]);
@@ -131,7 +129,7 @@ void ComplianceFilter::Impl::Predict(int j, double dt, bool tip_fixed, bool seat
   t.f_backlash_clearance = fbe;
   t.process_noise = q;
   t.predicted = true;
-  PredictBranchGap(j, encoder_increment, load_step, branch_backlash_gap);
+  PredictBranchGap(j, encoder_increment, load_step);
 }
 
 // Released and held again elsewhere, after a transit the log does not show

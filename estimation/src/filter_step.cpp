@@ -132,6 +132,7 @@ double ComplianceFilter::Impl::ContactOnsetVariance(const FilterSample& sample, 
   const ContactPrior prior = MixContact(options, contact_probability[j], chain_dt);
   branch_last[j] = contact_probability[j];
   branch_continuing[j] = prior.continuing;
+  branch_ended[j] = prior.ended;
   contact_prior[j] = prior.probability;
   const double sd = options.contact_load_sd_nm;
   return (1.0 - prior.continuing) * sd * sd;
