@@ -166,6 +166,7 @@ void ComplianceFilter::Impl::UpdateEffortBranches(const FilterSample& sample, in
   gap[kScale] = gap[kClearance] = 0.0;
   s.mean -= (1.0 - p) * gap;
   branch_spread[j] = std::sqrt(p * (1.0 - p)) * gap;
+  branched[j] = true;
   P.noalias() += spread * spread.transpose();
 }
 
@@ -175,6 +176,7 @@ void ComplianceFilter::Impl::UpdateEffortBranches(const FilterSample& sample, in
 // served the filter a little but not the smoother, whose F does not know it:
 // docs/decisions/contact-branches.md.)
 void ComplianceFilter::Impl::PredictBranchGap(int j, double encoder_increment, double load_step) {
+  if (!branched[j]) return;
   const FilterTransition& t = transition[j];
   for (Vector* v : {&branch_gap[j], &branch_spread[j]}) {  // D and E both by F, as P is F·P·Fᵀ
     Vector& x = *v;

@@ -232,10 +232,13 @@ struct ComplianceFilter::Impl {
   void UpdateEffortBranches(const FilterSample& sample, int j, bool unloaded, StepTally* tally);
   void PredictBranchGap(int j, double encoder_increment, double load_step);
   void UpdateBranches(int j, const Vector& h) {
+    if (!branched[j]) return;
     branch_gap[j] -= last_gain * h.dot(branch_gap[j]);
     branch_spread[j] -= last_gain * h.dot(branch_spread[j]);
   }
   void ClearBranches(int j) {
+    if (!branched[j]) return;
+    branched[j] = false;
     branch_gap[j].setZero();
     branch_spread[j].setZero();
   }
@@ -337,6 +340,7 @@ struct ComplianceFilter::Impl {
   // maps as P since, so that the next effort's update takes it out again
   // (each branch's own covariance is P_w) instead of adding it once more.
   Vector branch_spread[2];
+  bool branched[2] = {true, true};  // D or E may be non-zero (false: both are 0, nothing to carry)
   double branch_last[2] = {0.0, 0.0};
   double branch_continuing[2] = {0.0, 0.0};
   double branch_ended[2] = {0.0, 0.0};
