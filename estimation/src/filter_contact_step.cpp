@@ -191,4 +191,51 @@ void ComplianceFilter::Impl::PredictBranchGap(int j, double encoder_increment, d
   gap[kTorque] += contact_held * load_step;
 }
 
+// A quasi-static log without the hint: the chance that this pose goes on
+// holding the last pose's contact (the chain's held move between two poses,
+// QuasiStaticTransitions: the tip stays, the load follows the encoder). A
+// pose at another depth, or an encoder jump, cannot hold it.
+double ComplianceFilter::Impl::HeldPoseShare(const FilterSample& sample, int j,
+                                             double previous_depth, bool jump) const {
+  if (!options.quasi_static || !options.infer_contact || sample.tip_fixed || jump ||
+      InUnloadedStart(options, sample.time_s - start_time_s) ||
+      !(std::abs(depth - previous_depth) <= kMaxHeldDepthChange)) {
+    return 0.0;
+  }
+  return branch_last[j];
+}
+
+// The pose's prediction as two branches (branch_gap): a contact that goes on
+// holds the tip where it was and moves its load with the bend (the hint's
+// held pose); a free tip starts again at the encoder (Reinitialise). The
+// state's mean is their mixture at the share `held`, and the pose's effort
+// then weighs the two (UpdateEffortBranches). Without it every pose
+// started the tip anew, and a clamp's crossing of its clearance, where the
+// load is nil, left the shaft's place to the prior.
+void ComplianceFilter::Impl::PredictPoseBranches(int j, const FilterSample& sample, double dt,
+                                                 double encoder_increment,
+                                                 double extra_compliance, double held) {
+  const FilterJointState before = joint[j];
+  Predict(j, dt, true, false, encoder_increment, extra_compliance, 1.0);
+  Reinitialise(j, sample, true);
+  const FilterJointState contact = joint[j];
+  joint[j] = before;
+  Predict(j, dt, false, false, encoder_increment, extra_compliance, 0.0);
+  Reinitialise(j, sample, false);
+  FilterJointState& s = joint[j];
+  const Vector d = contact.mean - s.mean;
+  s.mean += held * d;
+  // One covariance for both, the likelier branch's: a held tip's is a narrow
+  // peak, a restarted one's the prior's breadth, and their moment-matched
+  // Gaussian let each pose's encoder drag a held tip across the clearance
+  // (docs/decisions/contact-branches.md).
+  if (held >= 0.5) s.covariance = contact.covariance;
+  branch_gap[j] = d;
+  branch_spread[j] = std::sqrt(held * (1.0 - held)) * d;
+  branched[j] = true;
+  s.covariance.noalias() += branch_spread[j] * branch_spread[j].transpose();
+  // No one F maps the last pose to this mixture: the smoother does not link them.
+  transition[j].predicted = false;
+}
+
 }  // namespace pliant::estimation

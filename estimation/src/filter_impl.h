@@ -231,6 +231,9 @@ struct ComplianceFilter::Impl {
   void FinishEffort(const FilterSample& sample, int j, bool unloaded, StepTally* tally);
   void UpdateEffortBranches(const FilterSample& sample, int j, bool unloaded, StepTally* tally);
   void PredictBranchGap(int j, double encoder_increment, double load_step);
+  double HeldPoseShare(const FilterSample& sample, int j, double previous_depth, bool jump) const;
+  void PredictPoseBranches(int j, const FilterSample& sample, double dt, double encoder_increment,
+                           double extra_compliance, double held);
   void UpdateBranches(int j, const Vector& h) {
     if (!branched[j]) return;
     branch_gap[j] -= last_gain * h.dot(branch_gap[j]);

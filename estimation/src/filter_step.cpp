@@ -104,6 +104,11 @@ void ComplianceFilter::Impl::AdvanceState(const FilterSample& sample, double pre
     }
     const bool jump = implausible_jump[j] && std::isfinite(sample.encoder_rad[j]);
     contact_onset[j] = ContactOnsetVariance(sample, j, dt);
+    const double held_pose = HeldPoseShare(sample, j, previous_depth, jump);
+    if (held_pose > 0.0) {
+      PredictPoseBranches(j, sample, dt, increment[j], extra.slope(j, j), held_pose);
+      continue;
+    }
     Predict(j, dt, sample.tip_fixed, sample.tip_fixed && !last_tip_fixed, increment[j],
             extra.slope(j, j), HeldShare(sample, j));
     if (jump || gap) {
