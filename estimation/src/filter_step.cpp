@@ -71,7 +71,8 @@ void ComplianceFilter::Impl::ExtraInternalTorque(const FilterSample& sample) {
 // The prediction from the last sample to this one. What the process model
 // cannot bridge is re-initialised (Reinitialise): an encoder step faster than
 // any joint moves (a pose change between rows, or the first sample after
-// missing ones), a time gap, and every row of a quasi-static log.
+// missing ones), a time gap, and every row of a quasi-static log (but for the
+// branch of a contact that goes on without the hint: PredictPoseBranches).
 void ComplianceFilter::Impl::AdvanceState(const FilterSample& sample, double previous_depth,
                                           StepTally* tally) {
   const bool released =
