@@ -15,10 +15,7 @@ using namespace filter_internal;
 // (0 in a quasi-static log, whose every row starts the tip anew, and where
 // the load is known or every residual is load).
 double ComplianceFilter::Impl::HeldShare(const FilterSample& sample, int j) const {
-  if (!options.infer_contact || sample.tip_fixed || options.quasi_static ||
-      InUnloadedStart(options, sample.time_s - start_time_s)) {
-    return 0.0;
-  }
+  if (!InfersContact(sample) || options.quasi_static) return 0.0;
   return contact_probability[j] * held_given_contact;
 }
 
@@ -184,11 +181,10 @@ void ComplianceFilter::Impl::PredictBranchGap(int j, double encoder_increment, d
                    t.f_backlash_clearance * x[kClearance];
     x[kTorque] = t.f_torque_torque * x[kTorque] + t.f_torque_scale * x[kScale];
   }
+  // (Branches are kept only while the contact is inferred.)
   Vector& gap = branch_gap[j];
-  const double contact_held = contact_probability[j] > 0.0 && options.infer_contact
-                                  ? held_given_contact : 0.0;
-  gap[kTip] -= contact_held * encoder_increment;
-  gap[kTorque] += contact_held * load_step;
+  gap[kTip] -= held_given_contact * encoder_increment;
+  gap[kTorque] += held_given_contact * load_step;
 }
 
 // A quasi-static log without the hint: the chance that this pose goes on
@@ -197,8 +193,7 @@ void ComplianceFilter::Impl::PredictBranchGap(int j, double encoder_increment, d
 // pose at another depth, or an encoder jump, cannot hold it.
 double ComplianceFilter::Impl::HeldPoseShare(const FilterSample& sample, int j,
                                              double previous_depth, bool jump) const {
-  if (!options.quasi_static || !options.infer_contact || sample.tip_fixed || jump ||
-      InUnloadedStart(options, sample.time_s - start_time_s) ||
+  if (!options.quasi_static || !InfersContact(sample) || jump ||
       !(std::abs(depth - previous_depth) <= kMaxHeldDepthChange)) {
     return 0.0;
   }

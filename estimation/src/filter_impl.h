@@ -226,6 +226,11 @@ struct ComplianceFilter::Impl {
   double FreeSpeed(int j, const FilterSample& sample, double effort_less_bias);
   void ShareContact();
   double HeldShare(const FilterSample& sample, int j) const;
+  // Without the hint, past the unloaded start: the contact is inferred.
+  bool InfersContact(const FilterSample& sample) const {
+    return options.infer_contact && !sample.tip_fixed &&
+           !InUnloadedStart(options, sample.time_s - start_time_s);
+  }
   void LearnHold();
   double PairTravel(int j);
   void FinishEffort(const FilterSample& sample, int j, bool unloaded, StepTally* tally);

@@ -192,7 +192,7 @@ void ComplianceFilter::Impl::UpdateMeasurements(const FilterSample& sample, Step
 // measured angle, an input, so its row is the unit vectors of tau and beta).
 void ComplianceFilter::Impl::UpdateEffort(const FilterSample& sample, int j, bool unloaded,
                                           StepTally* tally) {
-  const bool mixture = options.infer_contact && !sample.tip_fixed && !unloaded;
+  const bool mixture = InfersContact(sample);
   if (!mixture) contact_probability[j] = 1.0;  // told: held (or the tare's known 0)
   if (unloaded) {  // the load is known: 0, with no doubt, whatever the effort says
     joint[j].mean[kTorque] = 0.0;

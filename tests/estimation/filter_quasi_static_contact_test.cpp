@@ -143,9 +143,8 @@ double CrossingTipError(double step_rad, bool hinted) {
   const auto p = models::testing::PaperParameters();
   const auto& jp = p.joints[0];
   const double k = models::ComplianceAt(jp, kDepth);
-  const double width = jp.deadzone_width_nm > 0.0 ? jp.deadzone_width_nm : jp.tau_min_nm;
   const auto encoder_at = [&](double tau) {
-    return jp.backlash_rad * models::SmoothSaturation(tau / width) + k * tau;
+    return jp.backlash_rad * models::SmoothSaturation(tau / jp.deadzone_width_nm) + k * tau;
   };
   std::mt19937_64 rng(5);
   std::normal_distribution<double> noise(0.0, 0.0025);
