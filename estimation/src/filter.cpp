@@ -217,7 +217,9 @@ void ComplianceFilter::Impl::ScalarUpdate(int j, Channel channel, const Vector& 
   Matrix& P = s.covariance;
   Vector u = P * h;
   double S = h.dot(u) + variance;
-  double nis = innovation * innovation / S;
+  // One division per update: the gain and the NIS both scale by 1/S.
+  double inverse_s = 1.0 / S;
+  double nis = innovation * innovation * inverse_s;
   int& rejected = rejections[j][channel];
   if (implausible || !(nis <= gate)) {
     tally->window_nis += std::isfinite(nis) ? std::min(nis, 2.0 * gate) : 2.0 * gate;
@@ -243,7 +245,8 @@ void ComplianceFilter::Impl::ScalarUpdate(int j, Channel channel, const Vector& 
     }
     u = P * h;
     S = h.dot(u) + variance;
-    nis = innovation * innovation / S;
+    inverse_s = 1.0 / S;
+    nis = innovation * innovation * inverse_s;
     tally->flags |= kFlagReacquired;
     restart_output[j] = true;
   } else {
@@ -251,7 +254,7 @@ void ComplianceFilter::Impl::ScalarUpdate(int j, Channel channel, const Vector& 
     tally->window_dof += 1;
   }
   rejected = 0;
-  Vector k = u / S;
+  Vector k = u * inverse_s;
   // A free tip's encoder and effort say where the tip is and what loads it,
   // not what the instrument is: s, e and beta are "consider" states there
   // (Schmidt–Kalman: their gain is zero, their doubt still flows into P
@@ -302,7 +305,10 @@ void ComplianceFilter::Impl::Repair(int j, const FilterSample& sample, bool full
   if (offset_bound > 0.0) {
     s.mean[kOffset] = std::clamp(s.mean[kOffset], -offset_bound, offset_bound);
   }
-  if (!s.mean.allFinite() || !s.covariance.allFinite()) {
+  // One sum is finite exactly when every entry is (a NaN or an infinity
+  // carries through; a sum beyond the double range needs the repair too),
+  // and it vectorises where allFinite() tests 42 entries one by one.
+  if (!std::isfinite(s.mean.sum() + s.covariance.sum())) {
     const double q = std::isfinite(sample.encoder_rad[j]) ? sample.encoder_rad[j] : 0.0;
     s.mean << q, 0.0, 0.0, 1.0, 0.0, 0.0;
     s.covariance = PriorCovariance(options, delta[j], uncertainty[j]);
@@ -313,7 +319,7 @@ void ComplianceFilter::Impl::Repair(int j, const FilterSample& sample, bool full
   // The Joseph form keeps P positive semi-definite but for rounding: a
   // non-positive variance is looked for every step; the full Cholesky test
   // (a fifth of a step's time when both blocks ran it every step) runs on
-  // one block every fourth step, so on each every eighth (kFullCheckPeriod).
+  // one block every sixteenth step, so on each every 32nd (kFullCheckPeriod).
   const bool diagonal_positive = (s.covariance.diagonal().array() > 0.0).all();
   if (!diagonal_positive || (full_check && !IsPositiveDefinite(s.covariance))) {
     const double jitter = 1e-12 * s.covariance.diagonal().cwiseAbs().maxCoeff() + 1e-20;

@@ -389,9 +389,10 @@ struct ComplianceFilter::Impl {
   bool restart_output[2] = {true, true};  // the output jumps to the estimate this step
   int window_position = 0;
   // Steps between two full Cholesky tests of a block's covariance: the
-  // rounding the Joseph form leaves builds up over thousands of steps, not 8.
-  static constexpr int kFullCheckPeriod = 8;
-  int check_phase = 0;  // block 0 is tested at phase 0, block 1 at phase 4
+  // rounding the Joseph form leaves builds up over thousands of steps, not 32
+  // (21 ms at 1.5 kHz).
+  static constexpr int kFullCheckPeriod = 32;
+  int check_phase = 0;  // block 0 is tested at phase 0, block 1 at phase 16
   int window_count = 0;
   double window_sum = 0.0;
   int window_dof_sum = 0;

@@ -132,7 +132,11 @@ void MotorMotion::Advance(const FilterOptions& o, double dt, double encoder_incr
   // tracker, all three closed-loop poles at θ): in steady state the estimate is
   // the quadratic fitted to the encoder angle by least squares with weights θ^k
   // on the sample k steps back, evaluated at the newest sample.
-  const double theta = std::exp(-dt / o.acceleration_filter_time_s);
+  if (dt != pole_dt_s) {  // the period rarely changes: exp once, not every step
+    pole_dt_s = dt;
+    pole = std::exp(-dt / o.acceleration_filter_time_s);
+  }
+  const double theta = pole;
   const double u = 1.0 - theta;
   const double g_velocity = 1.5 * u * u * (1.0 + theta);
   const double g_acceleration = 0.5 * u * u * u;

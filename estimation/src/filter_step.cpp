@@ -244,9 +244,10 @@ void ComplianceFilter::Impl::UpdateEffort(const FilterSample& sample, int j, boo
   // out; what it has not taught is effort noise.
   InternalTorque& arm = internal_torque[j];
   // A quasi-static log has no dynamics, and its table error is σ_rest's.
+  // (Only the mixture reads or teaches the arm's torque: a held row skips it.)
   if (options.quasi_static) {
     arm.regressor.setZero();
-  } else {
+  } else if (mixture) {
     arm.SetMotion(options, motion[j].velocity_rad_s, motion[j].acceleration_rad_s2);
   }
   const double arm_torque = mixture ? arm.Torque() : 0.0;

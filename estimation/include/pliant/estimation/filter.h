@@ -340,6 +340,7 @@ struct MotorMotion {
   /// have bent a held shaft in one sample (HeldLoadProcessVariance).
   double increment_peak_rad = 0.0;
   double peak_fade_dt_s = -1.0, peak_fade = 0.0;  ///< e^(−dt/window) for the last dt
+  double pole_dt_s = -1.0, pole = 0.0;  ///< θ = e^(−dt/options.acceleration_filter_time_s)
   void Advance(const FilterOptions& options, double dt, double encoder_increment);
   /// J·θ̈ (N·m), never beyond the effort limit: no motor accelerates faster
   /// than its largest effort can drive it, and an encoder outlier must not
