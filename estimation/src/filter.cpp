@@ -131,6 +131,8 @@ void ComplianceFilter::Impl::Reset() {
   }
   std::fill(window_nis.begin(), window_nis.end(), 0.0);
   std::fill(window_dof.begin(), window_dof.end(), 0);
+  contact_rates.Start(options);
+  chain_step_s = 0.0;
   window_position = window_count = window_dof_sum = check_phase = 0;
   motion_started = advanced = false;
   held_first = held_count = 0;

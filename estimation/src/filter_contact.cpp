@@ -35,16 +35,57 @@ double LogSumExp(double a, double b) {
 struct ChainSwitch {
   double start, end;
 };
-ChainSwitch SwitchOver(const FilterOptions& o, double dt) {
+ChainSwitch SwitchOver(const FilterOptions& o, const ContactRates& rates, double dt) {
   if (o.quasi_static) dt = o.sample_period_s;
-  return {-std::expm1(-o.contact_start_rate_hz * dt), -std::expm1(-o.contact_end_rate_hz * dt)};
+  return {-std::expm1(-rates.start_hz() * dt), -std::expm1(-rates.end_hz() * dt)};
 }
+
+// The options' rates weigh as one episode of each kind: from its second
+// contact on, a log's own episodes outweigh them.
+constexpr double kPriorEpisodes = 1.0;
+// An episode is counted once the chain believes it (p above 0.9) and ends
+// once it believes the tip free again (below 0.1): the posterior's flicker
+// inside a push or a free stretch is no new episode.
+constexpr double kBelievedContact = 0.9, kBelievedFree = 0.1;
 
 }  // namespace
 
-ContactPrior MixContact(const FilterOptions& o, double probability, double dt) {
+void ContactRates::Start(const FilterOptions& o) {
+  onsets_ = ends_ = free_s_ = contact_s_ = 0.0;
+  believed_ = false;
+  start_hz_ = o.contact_start_rate_hz;
+  end_hz_ = o.contact_end_rate_hz;
+}
+
+// The Gamma posterior's mean, episodes over time at risk. The counts forget
+// by 1 − dt/memory a step (first order: a step is milliseconds, the memory a
+// minute; a longer step forgets all).
+void ContactRates::Learn(const FilterOptions& o, double probability, double chain_dt_s) {
+  // A quasi-static log's t is a pose index: no time to count rates in.
+  if (!o.learn_contact_rates || o.quasi_static || !(chain_dt_s > 0.0) ||
+      !std::isfinite(probability)) {
+    return;
+  }
+  const double p = std::clamp(probability, 0.0, 1.0);
+  const double keep = std::max(0.0, 1.0 - chain_dt_s / o.contact_rate_memory_s);
+  onsets_ *= keep, ends_ *= keep, free_s_ *= keep, contact_s_ *= keep;
+  free_s_ += (1.0 - p) * chain_dt_s;
+  contact_s_ += p * chain_dt_s;
+  if (!believed_ && p > kBelievedContact) {
+    believed_ = true;
+    onsets_ += 1.0;
+  } else if (believed_ && p < kBelievedFree) {
+    believed_ = false;
+    ends_ += 1.0;
+  }
+  start_hz_ = (kPriorEpisodes + onsets_) / (kPriorEpisodes / o.contact_start_rate_hz + free_s_);
+  end_hz_ = (kPriorEpisodes + ends_) / (kPriorEpisodes / o.contact_end_rate_hz + contact_s_);
+}
+
+ContactPrior MixContact(const FilterOptions& o, const ContactRates& rates, double probability,
+                        double dt) {
   ContactPrior m;
-  const ChainSwitch chance = SwitchOver(o, dt);
+  const ChainSwitch chance = SwitchOver(o, rates, dt);
   const double stays = probability * (1.0 - chance.end);
   m.probability = stays + (1.0 - probability) * chance.start;
   m.continuing = m.probability > 0.0 ? stays / m.probability : 0.0;
@@ -188,9 +229,9 @@ double HeldWindowEvidence(const PoseTransitions& t) {
   return LogSumExp(t.held - t.free, 0.0) + std::log(0.5);
 }
 
-double ContactAfterPosePair(const FilterOptions& o, double probability,
+double ContactAfterPosePair(const FilterOptions& o, const ContactRates& rates, double probability,
                             const PoseTransitions& evidence) {
-  const ChainSwitch chance = SwitchOver(o, o.sample_period_s);  // one period per pose
+  const ChainSwitch chance = SwitchOver(o, rates, o.sample_period_s);  // one period per pose
   const double p = std::clamp(probability, 0.0, 1.0);
   // log(0) is −inf: a move the last pose rules out adds nothing.
   const double contact =

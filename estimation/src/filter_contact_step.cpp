@@ -43,7 +43,8 @@ void ComplianceFilter::Impl::ShareContact() {
   }
   if (pair.valid) {
     const double shared =
-        filter_internal::ContactAfterPosePair(options, contact_probability[joint_scored], pair);
+        filter_internal::ContactAfterPosePair(options, contact_rates, contact_probability[joint_scored],
+                                              pair);
     for (int j = 0; j < 2; ++j) {
       if (pending[j].update && pending[j].mixture) contact_probability[j] = shared;
     }
@@ -57,6 +58,7 @@ void ComplianceFilter::Impl::ShareContact() {
   for (int j = 0; j < 2; ++j) {
     if (pending[j].update && pending[j].mixture) contact_probability[j] = shared;
   }
+  contact_rates.Learn(options, shared, chain_step_s);
 }
 
 // A continuous log's pair windows, closed on this row, on whether a contact
@@ -75,7 +77,7 @@ void ComplianceFilter::Impl::LearnHold() {
   if (!closed) return;
   const double window_s =
       std::max(pair_window[0].closed_duration_s, pair_window[1].closed_duration_s);
-  const double drift = -std::expm1(-options.contact_end_rate_hz * window_s);
+  const double drift = -std::expm1(-contact_rates.end_hz() * window_s);
   const double h = held_given_contact * (1.0 - drift) + (1.0 - held_given_contact) * drift;
   held_given_contact =
       1.0 / (1.0 + std::exp(std::clamp(std::log1p(-h) - std::log(h) - log_odds, -700.0, 700.0)));

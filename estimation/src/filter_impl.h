@@ -14,6 +14,7 @@
 
 #include "pliant/estimation/extra_effects.h"
 #include "pliant/estimation/filter.h"
+#include "filter_contact_chain.h"
 #include "filter_internal_torque.h"
 #include "pliant/models/effects/compliance.h"
 #include "pliant/models/travel_since_reversal.h"
@@ -66,13 +67,6 @@ struct ExtraDeflection {
   Eigen::Matrix2d slope = Eigen::Matrix2d::Zero();  // (j, i): ∂Δq_j/∂τ_i
 };
 
-// The contact chain's prediction for one step (filter_contact.cpp).
-struct ContactPrior {
-  double probability = 0.0;  // of contact, before this step's effort
-  double continuing = 0.0;   // the share of it that is the last step's contact going on
-  double ended = 0.0;        // the share of no contact that is the last step's contact ending
-};
-ContactPrior MixContact(const FilterOptions& o, double probability, double dt);
 // The evidence for contact from the slab's innovation (and its variance) and the
 // no-contact residual (its scale², Student-t with free_dof degrees of freedom,
 // Gaussian when free_dof is infinite): level_weight·[log p(r | contact) −
@@ -98,7 +92,7 @@ PoseTransitions QuasiStaticTransitions(const FilterOptions& o, double residual,
                                        double free_variance);
 // P(contact) after a pose pair, from the last pose's posterior `probability`
 // and the four moves' log-likelihoods summed over the joints.
-double ContactAfterPosePair(const FilterOptions& o, double probability,
+double ContactAfterPosePair(const FilterOptions& o, const ContactRates& rates, double probability,
                             const PoseTransitions& evidence);
 // An effort's update waiting for the shared contact probability (ShareContact).
 struct PendingEffort {
@@ -336,6 +330,8 @@ struct ComplianceFilter::Impl {
   double contact_probability[2] = {1.0, 1.0};
   double contact_prior[2] = {1.0, 1.0};
   double contact_onset[2] = {0.0, 0.0};
+  filter_internal::ContactRates contact_rates;  // shared by the joints, as the contact is
+  double chain_step_s = 0.0;  // this step's chain time (ContactOnsetVariance)
   // The state is the mixture of a contact branch and a free one; what they
   // differ by in mean (contact − free) is kept, so that a contact recognised
   // late brings the load and the tip its branch has followed (IMM's two

@@ -148,6 +148,7 @@ bool FilterOptions::IsValid(std::string* error) const {
   for (const auto& [name, v] : {std::pair<const char*, double>{"contact_start_rate_hz",
                                                                   contact_start_rate_hz},
                                 {"contact_end_rate_hz", contact_end_rate_hz},
+                                {"contact_rate_memory_s", contact_rate_memory_s},
                                 {"contact_load_sd_nm", contact_load_sd_nm},
                                 {"unmodelled_effort_sd_nm", unmodelled_effort_sd_nm},
                                 {"unmodelled_effort_memory", unmodelled_effort_memory},

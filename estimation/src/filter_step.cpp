@@ -135,7 +135,8 @@ double ComplianceFilter::Impl::ContactOnsetVariance(const FilterSample& sample, 
   for (int k = 0; k < 2; ++k) speed = std::max(speed, std::abs(motion[k].velocity_rad_s));
   const double moving = std::min(1.0, speed / options.unmodelled_effort_speed_rad_s);
   const double chain_dt = options.quasi_static ? dt : dt * (0.1 + 0.9 * moving);
-  const ContactPrior prior = MixContact(options, contact_probability[j], chain_dt);
+  chain_step_s = chain_dt;
+  const ContactPrior prior = MixContact(options, contact_rates, contact_probability[j], chain_dt);
   branch_last[j] = contact_probability[j];
   branch_continuing[j] = prior.continuing;
   branch_ended[j] = prior.ended;

@@ -255,6 +255,12 @@ struct FilterOptions {
   bool infer_contact = true;
   double contact_start_rate_hz = 0.1;  ///< λ_on, 1/s: a contact every 10 s on average
   double contact_end_rate_hz = 0.5;    ///< λ_off, 1/s: a contact lasts 2 s on average
+  /// true: λ_on and λ_off above are the prior (worth one episode of each kind)
+  /// of rates learned from the log's own contacts, over the last
+  /// contact_rate_memory_s of the chain's time (docs/decisions/contact-rates.md).
+  /// Continuous logs only. false: the rates stay fixed.
+  bool learn_contact_rates = true;
+  double contact_rate_memory_s = 60.0;
   double contact_load_sd_nm = 1.0;     ///< σ_c, N·m: the spread of a contact's load
   /// σ_u² = σ_rest² + m·σ_moving², m = min(1, |θ̇|/unmodelled_effort_speed):
   /// at rest the bias table's own error (σ_rest, fixed); moving, the arm's

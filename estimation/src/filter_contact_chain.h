@@ -1,0 +1,39 @@
+// The contact chain of the online filter without the tip_fixed hint
+// (filter_contact.cpp): its prediction over a step, and its two rates,
+// learned from the log's own contacts (docs/decisions/contact-rates.md).
+#pragma once
+
+#include "pliant/estimation/filter_options.h"
+
+namespace pliant::estimation::filter_internal {
+
+// The chain's rates, 1/s of chain time. FilterOptions' λ_on and λ_off are a
+// Gamma prior worth one episode of each kind; the episodes the chain has
+// believed and the chain time it spent free and in contact, forgotten over
+// FilterOptions::contact_rate_memory_s, update it: a log of pushes teaches
+// that contacts come often, a free log that they are rare.
+class ContactRates {
+ public:
+  void Start(const FilterOptions& o);
+  // One step of chain time chain_dt_s ending with this contact probability.
+  void Learn(const FilterOptions& o, double probability, double chain_dt_s);
+  double start_hz() const { return start_hz_; }
+  double end_hz() const { return end_hz_; }
+
+ private:
+  double start_hz_ = 0.0, end_hz_ = 0.0;
+  double onsets_ = 0.0, ends_ = 0.0;       // episodes believed, forgotten
+  double free_s_ = 0.0, contact_s_ = 0.0;  // chain time at risk, forgotten
+  bool believed_ = false;                  // inside an episode the chain believed
+};
+
+// The contact chain's prediction for one step (filter_contact.cpp).
+struct ContactPrior {
+  double probability = 0.0;  // of contact, before this step's effort
+  double continuing = 0.0;   // the share of it that is the last step's contact going on
+  double ended = 0.0;        // the share of no contact that is the last step's contact ending
+};
+ContactPrior MixContact(const FilterOptions& o, const ContactRates& rates, double probability,
+                        double dt);
+
+}  // namespace pliant::estimation::filter_internal
