@@ -198,6 +198,10 @@ Command AddFilterCommand(CLI::App& app) {
       "--no-contact-inference", [&f](std::int64_t) { f.infer_contact = false; },
       "Read every effort residual as external load where the log's tip_fixed is 0 or absent, "
       "instead of contact being the exception (docs/decisions/contact-prior.md)");
+  sub->add_flag_function(
+      "--fixed-contact-rates", [&f](std::int64_t) { f.learn_contact_rates = false; },
+      "Keep the contact chain's rates at their priors (a contact every 10 s of motion, lasting "
+      "2 s) instead of learning them from the log (docs/decisions/contact-rates.md)");
   sub->add_option("--inertial-error", f.inertial_torque_error,
                   "κ: the share of the fitted inertial torque J·θ̈ the fit may misread, as effort "
                   "variance (κ·J·θ̈)² with the tip held (0: exact; only with --motor-inertia)")
