@@ -5,6 +5,7 @@
 //   dense_dynamic  — the same with dynamic-size Eigen matrices,
 //   contact        — the filter without the tip_fixed hint (contact inferred),
 //   deflection     — the filter with one deflection effect in the parameters,
+//   friction       — the filter with one internal-torque effect in the parameters,
 // on a 1.5 kHz divot-push log drawn from the model. Each benchmark times every
 // step on its own (steady_clock, its overhead subtracted) and reports the
 // median and the 99th percentile in ns, and the heap allocations per step.
@@ -143,6 +144,21 @@ void BM_FilterStepDeflection(benchmark::State& state) {
   TimeSteps(state, [&](const FilterSample& s) { benchmark::DoNotOptimize(filter.Step(s)); });
 }
 
+// With one internal-torque effect in the parameters (joint_friction, the
+// real PSM2's friction fitted to the shared free-motion bag: docs/decisions/
+// contact-rates.md): the catalogue code evaluated at each row's velocity and
+// taken out of the effort. What the file's internal-torque effects cost on
+// top of BM_FilterStep.
+void BM_FilterStepFriction(benchmark::State& state) {
+  auto parameters = pliant::models::testing::PaperParameters();
+  parameters.effects.push_back({"joint_friction",
+                                {"viscous1", "viscous2", "coulomb1", "coulomb2", "velocity_scale"},
+                                {0.12, 0.33, 0.15, 0.14, 0.05},
+                                {0.0, 0.0, 0.0, 0.0, 0.0}});
+  pliant::estimation::ComplianceFilter filter(parameters);
+  TimeSteps(state, [&](const FilterSample& s) { benchmark::DoNotOptimize(filter.Step(s)); });
+}
+
 void BM_DenseFixedEkf(benchmark::State& state) {
   pliant::bench::DenseFixedEkf ekf(pliant::models::testing::PaperParameters(), {});
   TimeSteps(state, [&](const FilterSample& s) {
@@ -183,6 +199,7 @@ BENCHMARK(BM_Equation2)->Iterations(2'000'000);
 BENCHMARK(BM_FilterStep)->Iterations(2'000'000);
 BENCHMARK(BM_FilterStepAligned)->Iterations(2'000'000);
 BENCHMARK(BM_FilterStepContact)->Iterations(2'000'000);
+BENCHMARK(BM_FilterStepFriction)->Iterations(2'000'000);
 BENCHMARK(BM_FilterStepDeflection)->Iterations(2'000'000);
 BENCHMARK(BM_DenseFixedEkf)->Iterations(2'000'000);
 BENCHMARK(BM_DenseDynamicEkf)->Iterations(1'000'000);
