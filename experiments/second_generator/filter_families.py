@@ -13,7 +13,8 @@ For each instrument variant (generate.py's options) and the control case
     pose index), beside `pliant correct`: the clamps' error, and how far each
     moves the free rows (nothing touches the tip there).
 Prints one line per variant: held-row RMS error (mrad) and the share inside
-the 95 % interval per joint, and the rows the filter rejected.
+the 95 % interval per joint, the rows the filter rejected, and without the
+hint the tip error (mm) each command's summary prints against the reference.
 
 Usage: filter_families.py PLIANT OUT_DIR [--seed N]   (about 2 minutes)
 """
@@ -47,6 +48,17 @@ def load(path):
 
 def run(*args):
     subprocess.run(args, check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+
+
+def tip_rms_mm(*args):
+    """Runs a `pliant filter` or `pliant correct` and returns the tip error its summary
+    prints against the log's q*_ref (the corrected line: `filter` or `corrected (...)`)."""
+    out = subprocess.run(args, check=True, capture_output=True, text=True)
+    for line in (out.stdout + out.stderr).splitlines():
+        words = line.split()
+        if words and words[0] in ("filter", "corrected") and "RMS" in words:
+            return float(words[words.index("RMS") + 1])
+    return float("nan")
 
 
 def without_column(source, target, column):
@@ -84,8 +96,10 @@ def variant(pliant, directory, seed, options):
     run(pliant, "filter", "--params", path("p.json"), path("calibration.csv"), "-o", path("cf.csv"))
     run(pliant, "filter", "--params", path("p.json"), path("test.csv"), "-o", path("tf.csv"))
     without_column(path("test.csv"), path("online.csv"), "tip_fixed")
-    run(pliant, "filter", "--params", path("p.json"), path("online.csv"), "-o", path("of.csv"))
-    run(pliant, "correct", "--params", path("p.json"), path("online.csv"), "-o", path("oc.csv"))
+    tip_mm = (tip_rms_mm(pliant, "filter", "--params", path("p.json"), path("online.csv"), "-o",
+                         path("of.csv")),
+              tip_rms_mm(pliant, "correct", "--params", path("p.json"), path("online.csv"), "-o",
+                         path("oc.csv")))
     # The calibration's clamps without the hint: one row per pose, t a pose
     # index (no "# timing" line: the filter reads the spacing).
     without_column(path("calibration.csv"), path("cal_online.csv"), "tip_fixed")
@@ -110,7 +124,7 @@ def variant(pliant, directory, seed, options):
             int(np.sum(test["flags"].astype(int) & 1)),
             [1e3 * np.sqrt(np.mean((corrected["q%d_corr" % j][held_test] -
                                     reference[j - 1][held_test]) ** 2)) for j in (1, 2)],
-            unhinted)
+            unhinted, tip_mm)
 
 
 def main():
@@ -119,17 +133,19 @@ def main():
     parser.add_argument("out_dir")
     parser.add_argument("--seed", type=int, default=5)
     args = parser.parse_args()
-    print("%-30s %-27s %-27s %-27s %-13s %s" % (
+    print("%-30s %-27s %-27s %-27s %-13s %-9s %s" % (
         "variant", "calibration clamps", "test, tip_fixed given", "test, no tip_fixed",
-        "correct", "rejected"))
-    print("%-30s %-27s %-27s %-27s %-13s" % ("", "RMS mrad / in 95 %", "RMS mrad / in 95 %",
-                                             "RMS mrad / in 95 %", "RMS mrad"))
+        "correct", "rejected", "no tip_fixed, tip mm"))
+    print("%-30s %-27s %-27s %-27s %-13s %-9s %s" % ("", "RMS mrad / in 95 %", "RMS mrad / in 95 %",
+                                                   "RMS mrad / in 95 %", "RMS mrad", "",
+                                                   "filter / correct"))
     unhinted = []
     for index, (name, options) in enumerate(VARIANTS):
-        cal, test, online, rejected, correct, calibration_online = variant(
+        cal, test, online, rejected, correct, calibration_online, tip_mm = variant(
             args.pliant, os.path.join(args.out_dir, "variant%d" % index), args.seed, options)
-        print("%-30s %-27s %-27s %-27s %-13s %d" % (name, cell(cal), cell(test), cell(online),
-                                                    "%.2f/%.2f" % tuple(correct), rejected))
+        print("%-30s %-27s %-27s %-27s %-13s %-9d %.2f / %.2f" % (
+            name, cell(cal), cell(test), cell(online), "%.2f/%.2f" % tuple(correct), rejected,
+            tip_mm[0], tip_mm[1]))
         unhinted.append((name, calibration_online))
     print()
     print("%-30s %-27s %-13s %-13s %s" % ("calibration, no tip_fixed", "filter on the clamps",
