@@ -39,6 +39,12 @@ const std::pair<const char*, Field> kFields[] = {
     {"output_step_limit_counts", &FilterOptions::output_step_limit_counts},
     {"gate_probability", &FilterOptions::gate_probability},
     {"mismatch_window", &FilterOptions::mismatch_window},
+    // Contact without the tip_fixed hint (docs/decisions/contact-prior.md, contact-rates.md).
+    {"infer_contact", &FilterOptions::infer_contact},
+    {"contact_start_rate_hz", &FilterOptions::contact_start_rate_hz},
+    {"contact_end_rate_hz", &FilterOptions::contact_end_rate_hz},
+    {"learn_contact_rates", &FilterOptions::learn_contact_rates},
+    {"contact_rate_memory_s", &FilterOptions::contact_rate_memory_s},
 };
 
 std::string Names() {

@@ -38,6 +38,8 @@ def test_filter_log_writes_the_commands_file(cli_filtered, tmp_path):
     (["--unloaded-start", "0.15"], {"unloaded_start_s": 0.15}),
     (["--no-load-following", "--clearance-sd", "0.002"], {"load_follows_motor": False,
                                                           "backlash_sd_rad": 0.002}),
+    (["--no-contact-inference"], {"infer_contact": False}),
+    (["--fixed-contact-rates"], {"learn_contact_rates": False}),
 ])
 def test_options_are_the_commands(tmp_path, flags, options):
     run_cli("filter", "--params", PARAMS, LOG, "-o", tmp_path / "cli.csv", *flags)
