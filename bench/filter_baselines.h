@@ -322,10 +322,8 @@ class DenseEkf {
     p_ = (a * p_ * a.transpose() + gain * r * gain.transpose()).eval();
     p_ = (0.5 * (p_ + p_.transpose())).eval();
     for (int j = 0; j < 2; ++j) {
-      const int e = kS * j + 4;
-      x_[e] = std::clamp(x_[e], -model_.delta(j), model_.delta(j));
-      const double clearance = model_.delta(j) + x_[e];
-      x_[kS * j + 2] = std::clamp(x_[kS * j + 2], -clearance, clearance);
+      estimation::ConfineToClearance(model_.delta(j), &x_[kS * j + estimation::kStateClearance],
+                                     &x_[kS * j + estimation::kStateBacklash]);
     }
   }
 

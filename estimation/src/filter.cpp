@@ -295,10 +295,9 @@ void ComplianceFilter::Impl::ScalarUpdate(int j, Channel channel, const Vector& 
 void ComplianceFilter::Impl::Repair(int j, const FilterSample& sample, bool full_check,
                                     StepTally* tally) {
   FilterJointState& s = joint[j];
-  // A clearance is never negative nor twice the nominal one.
-  s.mean[kClearance] = std::clamp(s.mean[kClearance], -delta[j], delta[j]);
-  const double clearance = delta[j] + s.mean[kClearance];
-  s.mean[kBacklash] = std::clamp(s.mean[kBacklash], -clearance, clearance);
+  // (A projection of the whole mean onto the wall instead, along P·d, was
+  // measured and not taken: docs/decisions/wall-constraint.md.)
+  ConfineToClearance(delta[j], &s.mean[kClearance], &s.mean[kBacklash]);
   s.mean[kScale] = std::clamp(s.mean[kScale], kMinScale, kMaxScale);
   // A calibration offset of spread σ_β is not many σ_β away: beyond the bound
   // the effort's change is the load's, which a held tip's β would otherwise

@@ -359,6 +359,7 @@ struct ComplianceFilter::Impl {
   filter_internal::PendingEffort pending[2];
   filter_internal::UnmodelledEffort unmodelled[2];
   filter_internal::InternalTorque internal_torque[2];
+  Eigen::Matrix2d arm_friction = Eigen::Matrix2d::Zero();  // ArmFriction, this step's
   MotorMotion motion[2];  // for the inertial torque in the effort, from the newest sample
   // The motor's rate over the state's own step (rad/s): the shaft's bend rate
   // with the tip held, in step with the effort it is taken out of.

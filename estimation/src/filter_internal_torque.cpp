@@ -5,6 +5,9 @@
 #include <cmath>
 
 #include <Eigen/Cholesky>
+#include <ceres/jet.h>
+
+#include "pliant/models/effects/joint_friction.h"
 
 namespace pliant::estimation::filter_internal {
 
@@ -21,13 +24,18 @@ void InternalTorque::Start(const FilterOptions& o) {
   oldest = queued = 0;
 }
 
-void InternalTorque::SetMotion(const FilterOptions& o, double velocity, double acceleration) {
-  // tanh(x) = 1 − 2/(e^{2x} + 1): one exp, where libm's tanh went through
-  // expm1 and took 8 % of the hinted step (filter_bench, perf); its error is
-  // absolute, at the last bit, all a regressor scaled by a friction in N·m
-  // can see. Beyond |x| = 20 tanh is ±1 to the last bit.
-  const double x = std::clamp(velocity / o.coulomb_speed_rad_s, -20.0, 20.0);
-  regressor << acceleration, 1.0 - 2.0 / (std::exp(2.0 * x) + 1.0), velocity, 1.0;
+Eigen::Matrix2d ArmFriction(double velocity_scale_rad_s, const Eigen::Vector2d& velocity_rad_s) {
+  // One evaluation with both levels seeded (joint j's torque reads only its
+  // own): dimension 0 the viscous levels, 1 the Coulomb levels.
+  using Jet = ceres::Jet<double, 2>;
+  const Jet viscous(0.0, 0), coulomb(0.0, 1);
+  const Jet p[5] = {viscous, viscous, coulomb, coulomb, Jet(velocity_scale_rad_s)};
+  models::JointState<Jet> state;
+  state.velocity_rad_s = velocity_rad_s.cast<Jet>();
+  const models::Vec2<Jet> torque = models::JointFrictionEffect{}(p, state);
+  Eigen::Matrix2d columns;
+  for (int j = 0; j < 2; ++j) columns.row(j) << torque[j].v[1], torque[j].v[0];
+  return columns;
 }
 
 // Why the lesson waits: a push's first rows, while the encoder crosses the

@@ -1,6 +1,6 @@
 // The arm's own torque in the effort while it moves (the online filter's,
-// filter_impl.h): inertia J·θ̈, Coulomb friction f·tanh(θ̇/v_f), viscous
-// friction c·θ̇ and the bias table's mean error τ_b, learned online from the
+// filter_impl.h): inertia J·θ̈, the catalogue's joint friction (Coulomb f·tanh(θ̇/v_f), viscous
+// c·θ̇) and the bias table's mean error τ_b, learned online from the
 // rows where nothing touches the instrument (recursive least squares with
 // forgetting; filter_internal_torque.cpp).
 #pragma once
@@ -23,7 +23,10 @@ struct InternalTorque {
   Vector4 information_mean = Vector4::Zero();  // information · coefficients
   Vector4 regressor = Vector4::Zero();     // this row's (θ̈, tanh(θ̇/v_f), θ̇, 1)
   void Start(const FilterOptions& o);
-  void SetMotion(const FilterOptions& o, double velocity_rad_s, double acceleration_rad_s2);
+  /// This row's regressor: the acceleration and the joint's row of ArmFriction.
+  void SetMotion(double acceleration_rad_s2, const Eigen::Vector2d& friction_columns) {
+    regressor << acceleration_rad_s2, friction_columns[0], friction_columns[1], 1.0;
+  }
   double Torque() const { return coefficients.dot(regressor); }
   double Variance() const { return regressor.dot(covariance * regressor); }
   // A row's lesson (weight: how much the arm moves as a free arm), taught
@@ -49,5 +52,11 @@ struct InternalTorque {
  private:
   void Teach(const Batch& batch, double memory_s);
 };
+
+/// The arm's friction is the catalogue's `joint_friction` (models/effects/
+/// joint_friction.h), evaluated, not restated: row j holds ∂τ_j/∂coulomb_j and
+/// ∂τ_j/∂viscous_j at the joints' velocities (rad/s), the effect being linear
+/// in both levels; velocity_scale_rad_s is its v_s (FilterOptions' v_f).
+Eigen::Matrix2d ArmFriction(double velocity_scale_rad_s, const Eigen::Vector2d& velocity_rad_s);
 
 }  // namespace pliant::estimation::filter_internal

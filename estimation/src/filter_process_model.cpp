@@ -57,6 +57,14 @@ double HeldLoadProcessVariance(const FilterOptions& o, double dt, double encoder
   return g * std::min(free_rate, bound) + (1.0 - g) * free_rate;
 }
 
+void ConfineToClearance(double nominal_clearance_rad, double* clearance_error_rad,
+                        double* backlash_rad) {
+  *clearance_error_rad =
+      std::clamp(*clearance_error_rad, -nominal_clearance_rad, nominal_clearance_rad);
+  const double clearance = nominal_clearance_rad + *clearance_error_rad;
+  *backlash_rad = std::clamp(*backlash_rad, -clearance, clearance);
+}
+
 double HeldEffortVariance(const FilterOptions& o, double inertial_torque_nm) {
   const double misread = o.inertial_torque_error * inertial_torque_nm;
   return o.effort_noise_nm * o.effort_noise_nm + misread * misread;

@@ -157,6 +157,10 @@ void ComplianceFilter::Impl::UpdateMeasurements(const FilterSample& sample, Step
                                              joint[j].covariance(kTorque, kTorque), width[j]);
   }
   const bool unloaded = InUnloadedStart(options, sample.time_s - start_time_s);
+  if (!options.quasi_static && InfersContact(sample)) {
+    arm_friction = ArmFriction(options.coulomb_speed_rad_s,
+                               {motion[0].velocity_rad_s, motion[1].velocity_rad_s});
+  }
   for (int j = 0; j < 2; ++j) {
     if (options.joint_recorded[j]) UpdateEffort(sample, j, unloaded, tally);
   }
@@ -249,7 +253,7 @@ void ComplianceFilter::Impl::UpdateEffort(const FilterSample& sample, int j, boo
   if (options.quasi_static) {
     arm.regressor.setZero();
   } else if (mixture) {
-    arm.SetMotion(options, motion[j].velocity_rad_s, motion[j].acceleration_rad_s2);
+    arm.SetMotion(motion[j].acceleration_rad_s2, arm_friction.row(j));
   }
   const double arm_torque = mixture ? arm.Torque() : 0.0;
   const double variance =

@@ -276,6 +276,12 @@ T HeldLoadIncrement(double hold, double encoder_increment_rad, const T& scale,
   return hold * encoder_increment_rad / (scale * compliance_rad_per_nm);
 }
 
+/// The shaft confined to its cannula: the clearance's error e (rad) to [−δ, δ]
+/// (a clearance is never negative nor twice the nominal δ, rad), then the
+/// shaft's place b (rad) to ±(δ + e). The filter's and the dense baselines' one wall.
+void ConfineToClearance(double nominal_clearance_rad, double* clearance_error_rad,
+                        double* backlash_rad);
+
 /// The effort's variance (N·m²) with the tip held: σ_effort² + (κ·J·θ̈)²,
 /// κ = inertial_torque_error, J·θ̈ the fitted inertial torque (N·m).
 double HeldEffortVariance(const FilterOptions& options, double inertial_torque_nm);
