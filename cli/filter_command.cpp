@@ -42,6 +42,7 @@ void PrintSummary(const FilterCommandOptions& o, const estimation::LogFilterSumm
   if (s.skipped_rows > 0)
     std::fprintf(out, "  skipped %zu bad rows (--skip-bad-rows)\n", s.skipped_rows);
   for (const auto& note : s.notes) std::fprintf(out, "  %s\n", note.c_str());
+  for (const auto& note : s.advice) std::fprintf(out, "  %s\n", note.c_str());
   std::fprintf(out, "  mean NIS per measurement %.3f (1 when the noise model is right)\n",
                s.mean_nis_per_dof);
   std::fprintf(out,
@@ -147,6 +148,9 @@ Command AddFilterCommand(CLI::App& app) {
   auto& f = o->filter;
   sub->add_option("--effort-noise", f.effort_noise_nm, "Effort noise σ, N·m")
       ->capture_default_str();
+  sub->add_flag("--effort-noise-from-log", f.effort_noise_from_log,
+                "Raise the effort noise to the log's own white noise where that is larger "
+                "(the summary notes it either way)");
   sub->add_option("--encoder-noise", f.encoder_noise_rad, "Encoder noise σ, rad")
       ->capture_default_str();
   sub->add_option("--torque-rate", f.external_torque_rate_nm,

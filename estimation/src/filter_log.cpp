@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "pliant/estimation/effort_noise.h"
 #include "pliant/estimation/filter_smoother.h"
 #include "pliant/io/log_reader.h"
 #include "pliant/io/log_writer.h"
@@ -55,19 +56,40 @@ struct OutputColumns {
   bool recorded[2] = {true, true};  // an unrecorded joint's columns are empty
 };
 
-// MedianRowSpacing over a log file's first rows (NaN for standard input,
-// which cannot be read twice).
-double MedianRowSpacingOf(const std::string& path, const io::LogReaderOptions& read_options) {
-  if (path == "-") return std::numeric_limits<double>::quiet_NaN();
+// A log file's first rows: their times (the spacing, MedianRowSpacing) and
+// efforts (the noise, EffortNoiseFromSamples). Empty for standard input,
+// which cannot be read twice.
+struct LogPrefix {
+  std::vector<double> times_s, effort_nm[2];
+};
+constexpr std::size_t kNoiseRows = 4096;  // the rows whose efforts give the noise
+
+LogPrefix ReadPrefix(const std::string& path, const io::LogReaderOptions& read_options) {
+  LogPrefix prefix;
+  if (path == "-") return prefix;
   io::LogReader reader(path, read_options);
   const io::StandardColumns in(reader.header());
-  std::vector<double> times;
-  while (times.size() < kSpacingRows) {
+  while (prefix.times_s.size() < kNoiseRows) {
     const double* row = reader.Next();
     if (row == nullptr) break;
-    times.push_back(row[in.t]);
+    prefix.times_s.push_back(row[in.t]);
+    prefix.effort_nm[0].push_back(row[in.tau1]);
+    prefix.effort_nm[1].push_back(row[in.tau2]);
   }
-  return MedianRowSpacing(times);
+  return prefix;
+}
+
+// What the filter runs with on this log: OptionsForLog, then EffortNoiseForLog.
+FilterOptions UsedOptions(const FilterOptions& options, const io::LogHeader& header,
+                          const std::string& path, const io::LogReaderOptions& read_options,
+                          LogFilterSummary* summary) {
+  const LogPrefix prefix = ReadPrefix(path, read_options);
+  FilterOptions used =
+      OptionsForLog(options, header, MedianRowSpacing(prefix.times_s), &summary->notes);
+  if (path == "-" && used.effort_noise_from_log && !used.quasi_static) {
+    summary->notes.push_back("standard input is read once: the effort noise is not estimated");
+  }
+  return EffortNoiseForLog(used, prefix.effort_nm, &summary->notes, &summary->advice);
 }
 
 std::string Note(const std::string& metadata_note, const LogFilterSummary& summary) {
@@ -148,8 +170,7 @@ LogFilterSummary SmoothLog(const std::string& input_path, const std::string& out
   io::LogHeader header = reader.header();
   const io::StandardColumns in(header);
   const std::size_t input_columns = header.columns.size();
-  const FilterOptions used =
-      OptionsForLog(options, header, MedianRowSpacingOf(input_path, read_options), &summary->notes);
+  const FilterOptions used = UsedOptions(options, header, input_path, read_options, summary);
   OutputColumns out(header);
   out.recorded[0] = used.joint_recorded[0];
   out.recorded[1] = used.joint_recorded[1];
@@ -261,6 +282,31 @@ FilterOptions OptionsForLog(FilterOptions options, const io::LogHeader& header,
   return options;
 }
 
+FilterOptions EffortNoiseForLog(FilterOptions options, const std::vector<double> effort_nm[2],
+                                std::vector<std::string>* notes, std::vector<std::string>* advice) {
+  if (options.quasi_static) return options;
+  double estimate = 0.0;
+  for (int j = 0; j < 2; ++j) {
+    const double sd = options.joint_recorded[j] ? EffortNoiseFromSamples(effort_nm[j]) : 0.0;
+    if (std::isfinite(sd)) estimate = std::max(estimate, sd);
+  }
+  if (!(estimate > options.effort_noise_nm)) return options;
+  std::ostringstream note;
+  note << std::setprecision(3) << "the efforts hold " << estimate
+       << " N·m of white noise (their second differences over the log's first "
+       << std::min(effort_nm[0].size(), kNoiseRows) << " rows), above the assumed "
+       << options.effort_noise_nm << " N·m: ";
+  if (!options.effort_noise_from_log) {
+    note << "--effort-noise-from-log uses it (docs/decisions/effort-noise.md)";
+    advice->push_back(note.str());
+    return options;
+  }
+  note << "used";
+  notes->push_back(note.str());
+  options.effort_noise_nm = estimate;
+  return options;
+}
+
 LogFilterSummary FilterLog(const std::string& input_path, const std::string& output_path,
                            const models::ModelParameters& parameters,
                            const FilterOptions& options, bool smooth,
@@ -270,8 +316,7 @@ LogFilterSummary FilterLog(const std::string& input_path, const std::string& out
   if (!smooth) {
     io::LogReader reader(input_path, read_options);
     io::LogHeader header = reader.header();
-    const FilterOptions used =
-        OptionsForLog(options, header, MedianRowSpacingOf(input_path, read_options), &summary.notes);
+    const FilterOptions used = UsedOptions(options, header, input_path, read_options, &summary);
     ComplianceFilter filter(parameters, used);
     const io::StandardColumns in(header);
     const std::size_t input_columns = header.columns.size();

@@ -22,6 +22,7 @@ const std::pair<const char*, Field> kFields[] = {
     {"sample_period_s", &FilterOptions::sample_period_s},
     {"encoder_noise_rad", &FilterOptions::encoder_noise_rad},
     {"effort_noise_nm", &FilterOptions::effort_noise_nm},
+    {"effort_noise_from_log", &FilterOptions::effort_noise_from_log},
     {"reference_noise_rad", &FilterOptions::reference_noise_rad},
     {"fuse_log_reference", &FilterOptions::fuse_log_reference},
     {"external_torque_rate_nm", &FilterOptions::external_torque_rate_nm},

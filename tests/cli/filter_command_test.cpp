@@ -3,11 +3,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <random>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "pliant/io/log_reader.h"
+#include "pliant/io/log_writer.h"
 #include "run_command.h"
 
 namespace pliant::testing {
@@ -152,6 +154,40 @@ TEST(FilterCommand, AnUnloadedStartReachesTheFilter) {
   EXPECT_GT(differ, rows / 2);
   ExpectRejected("--unloaded-start -1", "--unloaded-start: unloaded_start_s",
                  "filter_command_unloaded_bad");
+}
+
+// The shipped push with three times its effort noise (0.01 N·m more than
+// doubled: 0.03 added): the summary says what the efforts hold, and with
+// --effort-noise-from-log the filter takes it and rejects fewer rows.
+TEST(FilterCommand, TheEffortNoiseIsReadFromTheLogWhenAsked) {
+  const auto dir = FreshDirectory("filter_command_noise");
+  io::Log log = io::ReadLog(kSource + "/data/divot_push.csv");
+  std::mt19937 rng(3);
+  std::normal_distribution<double> noise(0.0, 0.03);
+  const auto tau1 = std::size_t(log.header.Index("tau1"));
+  const auto tau2 = std::size_t(log.header.Index("tau2"));
+  for (std::size_t r = 0; r < log.Rows(); ++r) {
+    log.values[r * log.Columns() + tau1] += noise(rng);
+    log.values[r * log.Columns() + tau2] += noise(rng);
+  }
+  const auto noisy = (dir / "noisy.csv").string();
+  io::WriteLog(noisy, log);
+  const auto run = [&](const std::string& flag) {
+    const auto r = RunCommand(kCli + " filter " + flag + " --params " + kSource +
+                                  "/data/paper.json " + noisy + " -o " + (dir / "out.csv").string(),
+                              dir);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    const auto at = r.out.find("rejected ");
+    return std::make_pair(r.out, at == std::string::npos ? -1L : std::stol(r.out.substr(at + 9)));
+  };
+  const auto [assumed, assumed_rejected] = run("");
+  const auto [taken, taken_rejected] = run("--effort-noise-from-log");
+  // √(0.01² + 0.03²) = 0.0316 N·m, within the estimator's spread (a few %).
+  EXPECT_NE(assumed.find("the efforts hold 0.03"), std::string::npos) << assumed;
+  EXPECT_NE(assumed.find("--effort-noise-from-log uses it"), std::string::npos) << assumed;
+  EXPECT_NE(taken.find("N·m: used"), std::string::npos) << taken;
+  EXPECT_GT(assumed_rejected, 0);
+  EXPECT_LT(taken_rejected, assumed_rejected / 10);
 }
 
 TEST(FilterCommand, BadInputExitsTwoAndWritesNothing) {

@@ -39,6 +39,9 @@ struct LogFilterSummary {
   /// What the log's header changed (a quasi-static log, an unrecorded joint),
   /// one sentence each; also in the output's "filter" metadata.
   std::vector<std::string> notes;
+  /// What the log suggests that the filter did not take (EffortNoiseForLog):
+  /// printed, not written into the output.
+  std::vector<std::string> advice;
 };
 
 /// The sample the filter sees in one row of a log with these columns; the
@@ -57,6 +60,16 @@ double MedianRowSpacing(const std::vector<double>& times_s);
 /// FilterOptions::time_gap_s apart. Adds one sentence per change to `notes`.
 FilterOptions OptionsForLog(FilterOptions options, const io::LogHeader& header,
                             double median_row_spacing_s, std::vector<std::string>* notes);
+
+/// On a log of samples in time (not quasi-static: a pose's effort is no
+/// sample of a steady rate), the larger recorded joint's EffortNoiseFromSamples
+/// over the log's first rows (effort_nm: joint 1's, joint 2's). Where it is
+/// above effort_noise_nm, with FilterOptions::effort_noise_from_log
+/// effort_noise_nm becomes it (never lowered: the option also stands for what
+/// the effort holds besides white noise) and one sentence in `notes` says so;
+/// without, the sentence goes to `advice`.
+FilterOptions EffortNoiseForLog(FilterOptions options, const std::vector<double> effort_nm[2],
+                                std::vector<std::string>* notes, std::vector<std::string>* advice);
 
 /// Throws io::InputError for a bad log and std::system_error when the output
 /// cannot be written; no output file is left behind then.

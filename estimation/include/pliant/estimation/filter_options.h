@@ -19,6 +19,13 @@ struct FilterOptions {
   // Measurement noise (standard deviations).
   double encoder_noise_rad = 7.7e-6 / 3.4641016151377544;  ///< one count / √12
   double effort_noise_nm = 0.01;
+  /// On a log (FilterLog, `pliant filter --effort-noise-from-log`):
+  /// effort_noise_nm raised to the log's own white noise where that is larger
+  /// (EffortNoiseForLog, which notes it either way). Off by default: told the
+  /// noise of a log three times noisier than assumed, the filter rejects no
+  /// held row (2,246 of 22,400 with 0.01 N·m) but without tip_fixed believes
+  /// each push later (joint 1 3.31 → 4.68 mrad; docs/decisions/effort-noise.md).
+  bool effort_noise_from_log = false;
   double reference_noise_rad = 5e-5;   ///< a sample's reference_rad (an optical tracker)
   /// A log's q1_ref, q2_ref columns as measurements of the tip (σ
   /// reference_noise_rad). Off: they only score the output. A validation
