@@ -35,7 +35,7 @@ Honesty FilterHonesty(const std::string& study_file, int trials) {
 // 150 trials of the 100 Hz family (about 4 s). Measured on the first 150:
 // mean NEES 1.746 (band 1.693–2.332), coverage 98.1 % (joint 1) and 95.3 %
 // (joint 2); the whole study in docs/validation.md section 8. The 1.5 kHz
-// family fails the same bounds today (NEES 2.317, joint 2 91.0 %), which
+// family fails the same bounds today (NEES 2.309, joint 2 91.1 %), which
 // docs/montecarlo.md explains.
 TEST(FamilyStudy, TheFilterIsHonestOnInstrumentsUnlikeTheDefaultsAt100Hz) {
   constexpr int kTrials = 150;
