@@ -269,13 +269,20 @@ Problem BuildProblem(const io::Log& log, const std::string& log_path, const Base
   for (int j = 0; j < 2; ++j) {
     const bool compared = std::any_of(all.begin(), all.end(), [j](const Sample& s) { return s.used[j]; });
     if (!problem.joint_recorded[j] || compared) continue;
+    // (Where the take-up probe will look from a clearance's take-up, say so.)
+    const bool probed = added.empty() && options.probe_wide_take_up &&
+                        model.clearance_load_nm(j) >
+                            kWideTakeUpFactor * NarrowTakeUpNm(model.parameters().joints[j]);
     problem.notes.push_back(
-        "joint " + std::to_string(j + 1) + " is not diagnosed: no row loads it beyond " +
+        "joint " + std::to_string(j + 1) + " is not diagnosed" +
+        (probed ? " at the parameters' take-up" : "") + ": no row loads it beyond " +
         Format("%.3g", factor * model.compared_load_nm(j)) + " N·m (" + Format("%.3g", factor) +
         " × the parameters' clearance load, the largest of its dead-zone width " +
         Format("%.3g", model.parameters().joints[j].deadzone_width_nm) + " N·m, tau_min and " +
-        "0.05 N·m); push it further, or check a dead-zone width wider than the clearance's "
-        "take-up (an identification can widen it to absorb a load effect)");
+        "0.05 N·m); " +
+        (probed ? "the take-up probe compares it from a clearance's take-up (its note follows)"
+                : "push it further, or check a dead-zone width wider than the clearance's "
+                  "take-up (an identification can widen it to absorb a load effect)"));
   }
   // Thin evenly for speed (docs/diagnose-method.md: fitting on a subsample).
   const std::size_t stride =

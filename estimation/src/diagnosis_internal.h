@@ -208,6 +208,9 @@ enum class Recalibration { kScale, kTilt, kTakeUp, kNarrowTakeUp };
 inline double NarrowTakeUpNm(const models::JointParameters& joint) {
   return std::max(joint.tau_min_nm, 0.05);
 }
+/// A take-up wider than e × NarrowTakeUpNm (the identification's prior on its
+/// log has sd 1) is one the take-up probe looks into (diagnosis_take_up.cpp).
+inline constexpr double kWideTakeUpFactor = 2.718281828459045;
 /// The base model's compliance share and clearance as a term to refit with
 /// each candidate (DiagnoseOptions::recalibrate_base); `model` must outlive
 /// it. Its parameters: s1, s2, d1, d2, then u1, u2 (all but kScale), then

@@ -17,9 +17,6 @@
 namespace pliant::estimation::diagnosis {
 namespace {
 
-// The identification's prior on the log of the take-up width has sd 1.
-constexpr double kWideFactor = 2.718281828459045;
-
 std::string Format(const char* format, double a, double b) {
   char text[96];
   std::snprintf(text, sizeof text, format, a, b);
@@ -156,7 +153,7 @@ TakeUpProbe ProbeWideTakeUp(const io::Log& log, const std::string& log_path,
   bool wide = false;
   for (int j = 0; j < 2; ++j) {
     const double narrow = NarrowTakeUpNm(parameters.joints[j]);
-    wide = wide || model.clearance_load_nm(j) > kWideFactor * narrow;
+    wide = wide || model.clearance_load_nm(j) > kWideTakeUpFactor * narrow;
     if (model.clearance_load_nm(j) > narrow) model.set_compared_load_nm(j, narrow);
   }
   if (!wide) return probe;
