@@ -40,6 +40,7 @@ def test_filter_log_writes_the_commands_file(cli_filtered, tmp_path):
                                                           "backlash_sd_rad": 0.002}),
     (["--no-contact-inference"], {"infer_contact": False}),
     (["--fixed-contact-rates"], {"learn_contact_rates": False}),
+    (["--effort-noise-from-log"], {"effort_noise_from_log": True}),
 ])
 def test_options_are_the_commands(tmp_path, flags, options):
     run_cli("filter", "--params", PARAMS, LOG, "-o", tmp_path / "cli.csv", *flags)
