@@ -1,12 +1,17 @@
 #pragma once
-// The error a corrected log leaves where it matters for a load effect.
+// The error a corrected log leaves where it matters for a load effect, and
+// the check that a parameters file with the effect lowers it.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <string>
 #include <vector>
 
+#include <gtest/gtest.h>
+
 #include "pliant/io/log_reader.h"
+#include "run_command.h"
 
 namespace pliant::testing {
 
@@ -34,6 +39,27 @@ inline double LoadedRmsError(const std::filesystem::path& corrected, int joint) 
     sum += e * e, ++n;
   }
   return n > 100 ? std::sqrt(sum / double(n)) : NAN;
+}
+
+// Runs `pliant COMMAND --params P other.csv` in dir with the parameters
+// before and after (files) and expects each joint's LoadedRmsError to fall
+// below `factor` × before; prints both.
+inline void ExpectLoadedErrorFalls(const std::filesystem::path& dir, const std::string& cli,
+                                   const std::string& command, const std::string& before_params,
+                                   const std::string& after_params, double factor) {
+  const std::string files[2] = {before_params, after_params};
+  for (int k = 0; k < 2; ++k) {
+    const auto r = RunIn(dir, cli + " " + command + " --params " + files[k] + " other.csv -o " +
+                                  command + std::to_string(k) + ".csv");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+  }
+  for (int joint : {1, 2}) {
+    const double before = LoadedRmsError(dir / (command + "0.csv"), joint);
+    const double after = LoadedRmsError(dir / (command + "1.csv"), joint);
+    std::printf("%s, joint %d loaded-row RMS error: %.3f -> %.3f mrad\n", command.c_str(), joint,
+                1e3 * before, 1e3 * after);
+    EXPECT_LT(after, factor * before) << command << ", joint " << joint;
+  }
 }
 
 }  // namespace pliant::testing
