@@ -13,6 +13,8 @@
 #include "identify_figures.h"
 #include "pliant/estimation/effect_catalogue.h"
 #include "pliant/estimation/effect_fit.h"
+#include "pliant/estimation/effect_inputs.h"
+#include "pliant/estimation/extra_effects.h"
 #include "pliant/estimation/identification_quasi_static.h"
 #include "pliant/estimation/identification_report.h"
 #include "pliant/estimation/joint_smoother.h"
@@ -162,6 +164,14 @@ std::optional<estimation::LogEffectFit> FitEffects(const IdentifyOptions& option
   return fit;
 }
 
+// Whether the file holds an effect on the measured effort (internal torque).
+bool ReadsTheEffort(const models::ModelParameters& parameters) {
+  const estimation::ExtraEffects effects(parameters.effects);
+  return std::any_of(effects.models().begin(), effects.models().end(), [](const auto& m) {
+    return m->Info().channel == models::Channel::kInternalTorque;
+  });
+}
+
 std::string EffectsText(const estimation::LogEffectFit& fit) {
   char line[320];
   std::snprintf(line, sizeof line,
@@ -257,7 +267,22 @@ void RunIdentify(const IdentifyOptions& options) {
   result.parameters.description = "identified by pliant identify (" + result.method + ", " +
                                    options.law + ") from " + std::to_string(options.logs.size()) +
                                    " log(s)";
-  const auto effects = FitEffects(options, logs, &result);
+  auto effects = FitEffects(options, logs, &result);
+  if (effects && ReadsTheEffort(result.parameters)) {
+    // An internal-torque effect was in the efforts the base fit read: its
+    // bias table took up what the effect puts there at the calibration's
+    // poses, which the effect beside it would then count twice. Once more:
+    // the base on the efforts without the effects, then the effects.
+    estimation::IdentificationData without;
+    for (std::size_t i = 0; i < logs.size(); ++i) {
+      estimation::AppendSamples(estimation::WithoutInternalTorque(logs[i], result.parameters),
+                                options.logs[i], {}, &without);
+    }
+    const std::string description = result.parameters.description;
+    result = Fit(options, method, without, prior);
+    result.parameters.description = description;
+    effects = FitEffects(options, logs, &result);
+  }
   io::WriteParameters(options.output_path, result.parameters);
   std::FILE* out = SummaryStream(options.output_path);
   const auto laws = estimation::CompareLaws(result);

@@ -106,6 +106,14 @@ JointCorrection ComplianceCorrector::Correct(const Eigen::Vector3d& q,
   state.encoder_angle_rad = q.head<2>();
   state.insertion_depth_m = q[2];
   state.travel_since_reversal_rad = travel_since_reversal_rad;
+  return Correct(state, measured_torque_nm);
+}
+
+JointCorrection ComplianceCorrector::Correct(const models::JointState<double>& inputs,
+                                             const Eigen::Vector2d& measured_torque_nm) const {
+  models::JointState<double> state = inputs;
+  const Eigen::Vector3d q(state.encoder_angle_rad[0], state.encoder_angle_rad[1],
+                          state.insertion_depth_m);
   const Eigen::Vector2d internal = extra_.InternalTorque(state);
   const Eigen::Vector2d table = bias_(bias_values_.data(), state);
   const Eigen::Vector2d fourier = bias_fourier_(fourier_values_.data(), state);

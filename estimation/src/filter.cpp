@@ -138,7 +138,7 @@ void ComplianceFilter::Impl::Reset() {
   held_first = held_count = 0;
   newest_step.setZero();
   window_sum = 0.0;
-  travel.Reset();
+  effect_rows = EffectInputs(options.quasi_static, options.time_gap_s);
   extra_internal_torque_nm.setZero();
   held_given_contact = 0.5;
 }

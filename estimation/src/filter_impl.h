@@ -17,6 +17,7 @@
 #include "filter_contact_chain.h"
 #include "filter_internal_torque.h"
 #include "pliant/models/effects/compliance.h"
+#include "pliant/estimation/effect_inputs.h"
 #include "pliant/models/travel_since_reversal.h"
 
 namespace pliant::estimation {
@@ -291,10 +292,11 @@ struct ComplianceFilter::Impl {
   // pliant correct does (the same catalogue code). The held friction's state
   // is the travel since the last reversal.
   ExtraEffects extra_effects;
-  models::TravelSinceReversal travel;
+  EffectInputs effect_rows{false};  // (rebuilt with the options in the constructor)
   Eigen::Vector2d extra_internal_torque_nm{0.0, 0.0};  // this state step's
-  // The row's inputs the effects see (encoder angles, depth, travel); the
-  // deflection effects get the state's τ on top (filter_deflection.cpp).
+  // The row's inputs the effects see (EffectInputs: angles, depth, time,
+  // velocity, the effort's rate, travel); the deflection effects get the
+  // state's τ on top (filter_deflection.cpp).
   models::JointState<double> effect_inputs;
   // The file's deflection effects: their index in extra_effects and their
   // parameters as Jet constants (sized once: Step never allocates).

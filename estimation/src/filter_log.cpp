@@ -147,6 +147,7 @@ FilterSample SampleFromRow(const io::StandardColumns& c, const double* row, bool
   s.effort_nm << row[c.tau1], row[c.tau2];
   if (fuse_reference) s.reference_rad << Optional(row, c.q1_ref), Optional(row, c.q2_ref);
   s.tip_fixed = Optional(row, c.tip_fixed) >= 0.5;  // NaN compares false: not fixed
+  s.velocity_rad_s << Optional(row, c.v1), Optional(row, c.v2);
   return s;
 }
 

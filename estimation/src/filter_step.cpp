@@ -54,15 +54,14 @@ void ComplianceFilter::Impl::StepState(const FilterSample& sample) {
   advanced = true;
 }
 
-// The internal torque of the parameters' further effects at this state
-// step's encoder angles (held friction: by the travel since the last reversal).
+// The internal torque of the parameters' further effects at this row's
+// inputs, as the identification fitted them (EffectInputs).
 void ComplianceFilter::Impl::ExtraInternalTorque(const FilterSample& sample) {
   if (parameters.effects.empty()) return;  // (the common case: nothing to evaluate)
-  models::JointState<double>& state = effect_inputs;
-  state.encoder_angle_rad << sample.encoder_rad[0], sample.encoder_rad[1];
-  state.insertion_depth_m = depth;
-  state.travel_since_reversal_rad = travel.Update(state.encoder_angle_rad);
-  extra_internal_torque_nm = extra_effects.InternalTorque(state);
+  effect_inputs = effect_rows.Update(
+      sample.time_s, Eigen::Vector3d(sample.encoder_rad[0], sample.encoder_rad[1], depth),
+      sample.effort_nm, sample.velocity_rad_s);
+  extra_internal_torque_nm = extra_effects.InternalTorque(effect_inputs);
   for (int j = 0; j < 2; ++j) {
     if (!std::isfinite(extra_internal_torque_nm[j])) extra_internal_torque_nm[j] = 0.0;
   }

@@ -61,6 +61,10 @@ class ComplianceCorrector {
   JointCorrection Correct(const Eigen::Vector3d& q, const Eigen::Vector2d& measured_torque_nm,
                           const Eigen::Vector2d& travel_since_reversal_rad =
                               Eigen::Vector2d::Zero()) const;
+  /// The same with every input the file's effects may read (EffectInputs:
+  /// velocity, time, the effort's rate), its external torque ignored.
+  JointCorrection Correct(const models::JointState<double>& inputs,
+                          const Eigen::Vector2d& measured_torque_nm) const;
 
   const ExtraEffects& extra_effects() const { return extra_; }
 

@@ -90,6 +90,8 @@ struct FilterSample {
   Eigen::Vector2d effort_nm{0.0, 0.0};        ///< tau1, tau2
   Eigen::Vector2d reference_rad{kMissing, kMissing};  ///< q1_ref, q2_ref
   bool tip_fixed = false;                     ///< the tip is clamped or in a divot
+  /// v1, v2 (rad/s) where the log has them, for the file's effects (EffectInputs).
+  Eigen::Vector2d velocity_rad_s{kMissing, kMissing};
 
   static constexpr double kMissing = std::numeric_limits<double>::quiet_NaN();
 };

@@ -1,0 +1,110 @@
+#include "pliant/estimation/effect_inputs.h"
+
+#include <cmath>
+#include <limits>
+
+#include "pliant/estimation/extra_effects.h"
+
+namespace pliant::estimation {
+
+EffectInputs::EffectInputs(bool quasi_static, double max_step_s, double effort_rate_window_s)
+    : quasi_static_(quasi_static), max_step_s_(max_step_s), window_s_(effort_rate_window_s) {}
+
+const models::JointState<double>& EffectInputs::Update(double time_s, const Eigen::Vector3d& q,
+                                                       const Eigen::Vector2d& effort_nm,
+                                                       const Eigen::Vector2d& velocity_rad_s) {
+  state_.encoder_angle_rad = q.head<2>();
+  state_.insertion_depth_m = q[2];
+  state_.time_s = time_s;
+  state_.external_torque_nm.setZero();
+  state_.travel_since_reversal_rad = travel_.Update(state_.encoder_angle_rad);
+  const double dt = time_s - last_time_;  // NaN on the first row
+  const bool pose = quasi_static_ || dt > max_step_s_;
+  for (int j = 0; j < 2; ++j) {
+    double v = velocity_rad_s[j];
+    if (!std::isfinite(v)) v = dt > 0.0 ? (q[j] - last_angle_[j]) / dt : 0.0;
+    state_.velocity_rad_s[j] = pose || !std::isfinite(v) ? 0.0 : v;
+  }
+  last_time_ = time_s;
+  last_angle_ = q.head<2>();
+  state_.effort_rate_nm_s.setZero();
+  if (pose) count_ = 0;  // (the rate's window starts again after a gap)
+  if (quasi_static_ || !std::isfinite(time_s)) return state_;
+  AddEffort(time_s, effort_nm);
+  // The least-squares slope of the window's efforts against time.
+  const double denominator = n_ * stt_ - st_ * st_;
+  if (n_ >= 3.0 && denominator > 0.0) {
+    for (int j = 0; j < 2; ++j) state_.effort_rate_nm_s[j] = (n_ * sty_[j] - st_ * sy_[j]) / denominator;
+  }
+  return state_;
+}
+
+void EffectInputs::AddEffort(double time_s, const Eigen::Vector2d& effort_nm) {
+  // Time going back (another log, a restart) or a non-finite effort: start again.
+  const bool back = count_ > 0 && time_s < time_[(oldest_ + count_ - 1) % kRing];
+  if (back || !effort_nm.allFinite()) {
+    count_ = 0;
+    Resum();
+    if (!effort_nm.allFinite()) return;
+  }
+  if (count_ == 0) anchor_s_ = time_s;  // (an epoch's seconds would cancel in the sums)
+  if (count_ == kRing) DropOldest();  // the ring is full
+  const int slot = (oldest_ + count_) % kRing;
+  time_[slot] = time_s;
+  effort_[0][slot] = effort_nm[0];
+  effort_[1][slot] = effort_nm[1];
+  ++count_;
+  Sum(slot, 1.0);
+  while (count_ > 1 && time_[oldest_] < time_s - window_s_) DropOldest();
+  if (++since_resum_ >= kRing) Resum();
+}
+
+void EffectInputs::DropOldest() {
+  Sum(oldest_, -1.0);
+  oldest_ = (oldest_ + 1) % kRing;
+  --count_;
+}
+
+// Adds (sign 1) or takes out (−1) one row's share of the rate line's sums.
+void EffectInputs::Sum(int slot, double sign) {
+  const double t = time_[slot] - anchor_s_;
+  n_ += sign, st_ += sign * t, stt_ += sign * t * t;
+  for (int j = 0; j < 2; ++j) {
+    sy_[j] += sign * effort_[j][slot];
+    sty_[j] += sign * t * effort_[j][slot];
+  }
+}
+
+// The sums from the ring itself, about its oldest time.
+void EffectInputs::Resum() {
+  since_resum_ = 0;
+  anchor_s_ = count_ > 0 ? time_[oldest_] : 0.0;
+  n_ = st_ = stt_ = 0.0;
+  sy_[0] = sy_[1] = sty_[0] = sty_[1] = 0.0;
+  for (int k = 0; k < count_; ++k) Sum((oldest_ + k) % kRing, 1.0);
+}
+
+io::Log WithoutInternalTorque(const io::Log& log, const models::ModelParameters& parameters) {
+  io::Log out = log;
+  const ExtraEffects effects(parameters.effects);
+  if (effects.empty()) return out;
+  const io::StandardColumns c(log.header);
+  EffectInputs inputs(log.header.QuasiStatic());
+  const auto value = [&](std::size_t r, int column) {
+    return column >= 0 ? log.Value(r, std::size_t(column)) : std::numeric_limits<double>::quiet_NaN();
+  };
+  for (std::size_t r = 0; r < log.Rows(); ++r) {
+    const Eigen::Vector3d q(value(r, c.q1), value(r, c.q2), value(r, c.q3));
+    const Eigen::Vector2d effort(value(r, c.tau1), value(r, c.tau2));
+    const auto& state = inputs.Update(value(r, c.t), q, effort,
+                                      Eigen::Vector2d(value(r, c.v1), value(r, c.v2)));
+    const Eigen::Vector2d internal = effects.InternalTorque(state);
+    const int tau[2] = {c.tau1, c.tau2};
+    for (int j = 0; j < 2; ++j) {
+      if (std::isfinite(internal[j])) out.values[r * log.Columns() + std::size_t(tau[j])] -= internal[j];
+    }
+  }
+  return out;
+}
+
+}  // namespace pliant::estimation

@@ -1,0 +1,95 @@
+// What the file's effects read of each streamed row (effect_inputs.h): the
+// same channels the identification fits them on, in closed form.
+#include "pliant/estimation/effect_inputs.h"
+
+#include <cmath>
+#include <limits>
+
+#include <gtest/gtest.h>
+
+#include "pliant/estimation/compliance_correction.h"
+#include "pliant/models/paper_parameters.h"
+
+namespace pliant::estimation {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// An effort linear in time, τ = 0.2 + 0.5·t and −0.1 − 2·t, has the rates 0.5
+// and −2 N·m/s from its third row on; the velocity is the log's where it has
+// one, else the encoders' backward difference.
+TEST(EffectInputs, RatesAndVelocitiesInClosedForm) {
+  EffectInputs inputs;
+  const double dt = 1.0 / 1500.0;
+  for (int k = 0; k < 300; ++k) {
+    const double t = 1.0e4 + k * dt;  // a clock far from 0: the sums are anchored
+    const double s = k * dt;
+    const Eigen::Vector3d q(0.01 + 0.3 * s, -0.02, 0.15);
+    const auto& state = inputs.Update(t, q, {0.2 + 0.5 * s, -0.1 - 2.0 * s}, {kNaN, 0.04});
+    EXPECT_EQ(state.time_s, t);
+    if (k < 2) continue;
+    EXPECT_NEAR(state.effort_rate_nm_s[0], 0.5, 1e-5) << k;
+    EXPECT_NEAR(state.effort_rate_nm_s[1], -2.0, 1e-5) << k;
+    EXPECT_NEAR(state.velocity_rad_s[0], 0.3, 1e-6) << k;
+    EXPECT_EQ(state.velocity_rad_s[1], 0.04);
+  }
+}
+
+// A row 0.5 s after the last (a pose log without its mark, a time gap) and
+// every row of a quasi-static log: no velocity, no rate.
+TEST(EffectInputs, PosesAndGapsHaveNoMotion) {
+  EffectInputs inputs;
+  inputs.Update(0.0, {0.0, 0.0, 0.15}, {0.0, 0.0}, {kNaN, kNaN});
+  const auto& after_gap = inputs.Update(0.5, {0.1, 0.0, 0.15}, {1.0, 0.0}, {kNaN, kNaN});
+  EXPECT_EQ(after_gap.velocity_rad_s[0], 0.0);
+  EXPECT_EQ(after_gap.effort_rate_nm_s[0], 0.0);
+  EffectInputs poses(true);
+  for (int k = 0; k < 5; ++k) {
+    const auto& s = poses.Update(0.001 * k, {0.1 * k, 0.0, 0.15}, {0.3 * k, 0.0}, {1.0, 1.0});
+    EXPECT_EQ(s.velocity_rad_s[0], 0.0);
+    EXPECT_EQ(s.effort_rate_nm_s[0], 0.0);
+  }
+}
+
+models::ModelParameters WithFriction() {
+  models::ModelParameters p = models::PaperParameters();
+  models::EffectParameters friction;
+  friction.name = "joint_friction";
+  friction.parameter_names = {"viscous1", "viscous2", "coulomb1", "coulomb2", "velocity_scale"};
+  friction.values = {0.1, 0.2, 0.05, 0.03, 0.02};
+  friction.sd = {0.0, 0.0, 0.0, 0.0, 0.0};
+  p.effects.push_back(friction);
+  return p;
+}
+
+// pliant correct reads the external torque with the joint's friction at the
+// row's velocity taken out: τ − τ0 − (b·v + F·tanh(v/v_s)).
+TEST(EffectInputs, TheCorrectorTakesTheFrictionAtTheRowsVelocity) {
+  const auto p = WithFriction();
+  const ComplianceCorrector with(p, CorrectionModel::kDeadZone);
+  const ComplianceCorrector without(models::PaperParameters(), CorrectionModel::kDeadZone);
+  EffectInputs inputs;
+  const auto& state = inputs.Update(0.0, {0.1, -0.1, 0.15}, {0.8, -0.6}, {0.05, -0.01});
+  const auto a = with.Correct(state, {0.8, -0.6});
+  const auto b = without.Correct(state, {0.8, -0.6});
+  EXPECT_NEAR(b.external_torque_nm[0] - a.external_torque_nm[0],
+              0.1 * 0.05 + 0.05 * std::tanh(0.05 / 0.02), 1e-12);
+  EXPECT_NEAR(b.external_torque_nm[1] - a.external_torque_nm[1],
+              0.2 * -0.01 + 0.03 * std::tanh(-0.01 / 0.02), 1e-12);
+}
+
+// The identification's second pass reads the efforts without the effects.
+TEST(EffectInputs, WithoutInternalTorqueTakesTheEffectOutOfEachRow) {
+  io::Log log;
+  log.header.columns = {"t", "q1", "q2", "q3", "tau1", "tau2", "v1", "v2"};
+  log.values = {0.0,   0.1, -0.1, 0.15, 0.8, -0.6, 0.05, -0.01,
+                0.001, 0.1, -0.1, 0.15, 0.8, -0.6, 0.0,  0.0};
+  const io::Log out = WithoutInternalTorque(log, WithFriction());
+  EXPECT_NEAR(out.Value(0, 4), 0.8 - 0.1 * 0.05 - 0.05 * std::tanh(2.5), 1e-12);
+  EXPECT_NEAR(out.Value(0, 5), -0.6 + 0.2 * 0.01 + 0.03 * std::tanh(0.5), 1e-12);
+  EXPECT_EQ(out.Value(1, 4), 0.8);  // at rest the friction is 0
+  EXPECT_EQ(out.Value(0, 1), 0.1);  // nothing else changes
+}
+
+}  // namespace
+}  // namespace pliant::estimation
