@@ -292,7 +292,7 @@ struct ComplianceFilter::Impl {
   // pliant correct does (the same catalogue code). The held friction's state
   // is the travel since the last reversal.
   ExtraEffects extra_effects;
-  EffectInputs effect_rows{false};  // (rebuilt with the options in the constructor)
+  EffectInputs effect_rows;  // (made again with the options in Reset)
   Eigen::Vector2d extra_internal_torque_nm{0.0, 0.0};  // this state step's
   // The row's inputs the effects see (EffectInputs: angles, depth, time,
   // velocity, the effort's rate, travel); the deflection effects get the
