@@ -75,3 +75,27 @@ def test_unknown_model_and_uneven_arrays_raise_input_error():
         pliant.correct(params, [0.1], [0.1], [0.1], [0.1], [0.1], model="sign")
     with pytest.raises(pliant.InputError, match="tau2: holds 2 values and q1 1"):
         pliant.correct(params, [0.1], [0.1], [0.1], [0.1], [0.1, 0.2])
+
+
+def test_arrays_with_times_give_the_effects_the_commands_inputs(tmp_path):
+    """A joint friction in the file reads each row's velocity: with t, v1, v2 the arrays give
+    the command's numbers; without them (no memory) the friction meets no motion."""
+    import json
+    params_json = json.load(open(data("paper.json")))
+    params_json["effects"] = {"joint_friction": {
+        name: {"value": value, "sd": 0.0} for name, value in
+        (("viscous1", 0.1), ("viscous2", 0.2), ("coulomb1", 0.05), ("coulomb2", 0.03),
+         ("velocity_scale", 0.02))}}
+    path = tmp_path / "friction.json"
+    path.write_text(json.dumps(params_json))
+    run_cli("correct", "--params", path, "--model", "deadzone", data("divot.csv"),
+            "-o", tmp_path / "cli.csv")
+    log = pliant.read_log(data("divot.csv"))
+    params = pliant.load_parameters(path)
+    args = (params, log["q1"], log["q2"], log["q3"], log["tau1"], log["tau2"])
+    streamed = pliant.correct(*args, model="deadzone", t=log["t"], v1=log["v1"], v2=log["v2"])
+    expected = pliant.read_log(tmp_path / "cli.csv")
+    np.testing.assert_array_equal(streamed["q1_corr"], expected["q1_corr"])
+    np.testing.assert_array_equal(streamed["q2_corr"], expected["q2_corr"])
+    still = pliant.correct(*args, model="deadzone")
+    assert np.max(np.abs(still["tau1_ext"] - streamed["tau1_ext"])) > 0.01
