@@ -282,6 +282,7 @@ void RunIdentify(const IdentifyOptions& options) {
     result = Fit(options, method, without, prior);
     result.parameters.description = description;
     effects = FitEffects(options, logs, &result);
+    data = std::move(without);  // (the report and the figures show what the base read)
   }
   io::WriteParameters(options.output_path, result.parameters);
   std::FILE* out = SummaryStream(options.output_path);
