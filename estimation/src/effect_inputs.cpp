@@ -28,7 +28,10 @@ const models::JointState<double>& EffectInputs::Update(double time_s, const Eige
   last_time_ = time_s;
   last_angle_ = q.head<2>();
   state_.effort_rate_nm_s.setZero();
-  if (pose) count_ = 0;  // (the rate's window starts again after a gap)
+  if (pose) {  // the rate's window starts again after a gap
+    count_ = 0;
+    Resum();
+  }
   if (quasi_static_ || !std::isfinite(time_s)) return state_;
   AddEffort(time_s, effort_nm);
   // The least-squares slope of the window's efforts against time.

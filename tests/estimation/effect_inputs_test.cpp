@@ -43,6 +43,12 @@ TEST(EffectInputs, PosesAndGapsHaveNoMotion) {
   const auto& after_gap = inputs.Update(0.5, {0.1, 0.0, 0.15}, {1.0, 0.0}, {kNaN, kNaN});
   EXPECT_EQ(after_gap.velocity_rad_s[0], 0.0);
   EXPECT_EQ(after_gap.effort_rate_nm_s[0], 0.0);
+  // After the gap the rate is the new rows' alone: 3 N·m/s from their third.
+  for (int k = 1; k < 6; ++k) {
+    const double t = 0.5 + 0.01 * k;
+    const auto& s = inputs.Update(t, {0.1, 0.0, 0.15}, {1.0 + 3.0 * (t - 0.5), 0.0}, {kNaN, kNaN});
+    if (k >= 2) EXPECT_NEAR(s.effort_rate_nm_s[0], 3.0, 1e-9) << k;
+  }
   EffectInputs poses(true);
   for (int k = 0; k < 5; ++k) {
     const auto& s = poses.Update(0.001 * k, {0.1 * k, 0.0, 0.15}, {0.3 * k, 0.0}, {1.0, 1.0});

@@ -1,6 +1,6 @@
 #pragma once
 // The effort's white noise, estimated from a log's own samples (docs/filter.md,
-// docs/decisions/effort-noise-from-the-log.md).
+// docs/decisions/effort-noise.md).
 
 #include <vector>
 
