@@ -1,5 +1,5 @@
-// Which rows of a log the diagnosis compares, against what reference, and the
-// base model's residual there (docs/diagnose-method.md).
+// Which rows of a log the diagnosis compares, against what reference, and
+// what each row's effects read (docs/diagnose-method.md).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -7,8 +7,8 @@
 
 #include "diagnosis_internal.h"
 #include "pliant/io/input_error.h"
+#include "pliant/estimation/effect_inputs.h"
 #include "pliant/models/psm_kinematics.h"
-#include "pliant/models/travel_since_reversal.h"
 
 namespace pliant::estimation::diagnosis {
 namespace {
@@ -102,9 +102,24 @@ void FindRecordedJoints(const io::Log& log, const io::StandardColumns& c, bool r
   recorded[1] = log.header.JointRecorded(2) && HasValues(log, c.q2) && HasValues(log, c.tau2);
 }
 
+// Row r through `effect_rows`; an unrecorded joint stays at rest at 0 (its
+// prior): nothing is read from it.
+models::JointState<double> StreamRow(const io::Log& log, const io::StandardColumns& c,
+                                     const Problem& problem, std::size_t r,
+                                     EffectInputs& effect_rows) {
+  models::JointState<double> state = effect_rows.Update(c, &log.values[r * log.Columns()]);
+  for (int j = 0; j < 2; ++j) {
+    if (problem.joint_recorded[j]) continue;
+    state.encoder_angle_rad[j] = state.velocity_rad_s[j] = state.effort_rate_nm_s[j] = 0.0;
+    state.travel_since_reversal_rad[j] = 0.0;
+  }
+  return state;
+}
+
 struct RowInputs {
-  std::vector<double> v[2];
-  std::vector<double> effort_rate[2];
+  bool quasi_static = false;
+  double effort_rate_window_s = 0.1;
+  std::vector<Eigen::Vector2d> centred_rate;  // empty for a quasi-static log
   int ref[2] = {-1, -1};
 };
 
@@ -119,16 +134,17 @@ std::vector<Sample> CollectSamples(const io::Log& log, const io::StandardColumns
   const auto& joints = model.parameters().joints;
   std::vector<const double*> values;
   for (const Term& term : added) values.push_back(term.parameters.data());
-  const int q[2] = {c.q1, c.q2}, tau[2] = {c.tau1, c.tau2};
+  const int tau[2] = {c.tau1, c.tau2};
   std::vector<Sample> all;
   int run = -1;
   bool previous_kept = false;
-  // The held-friction effect's state, fed every row (kept or not) as correct
-  // and the filter feed it: the travel since the joint last reversed.
-  models::TravelSinceReversal travel;
+  // What the effects read of each row (velocity, travel since reversal, time),
+  // fed every row (kept or not) through the one tracker that pliant correct
+  // and the filter stream a log with: an effect is fitted here on the inputs
+  // it will meet there; the effort's rate is the same line, centred.
+  EffectInputs effect_rows(in.quasi_static, kTimeGapS, in.effort_rate_window_s);
   for (std::size_t r = 0; r < log.Rows(); ++r) {
-    const Eigen::Vector2d travel_rad =
-        travel.Update(Eigen::Vector2d(log.Value(r, q[0]), log.Value(r, q[1])));
+    const models::JointState<double> inputs = StreamRow(log, c, problem, r, effect_rows);
     const bool fixed = c.tip_fixed >= 0 && log.Value(r, c.tip_fixed) > 0.5;
     const bool keep = problem.profile_tip ? fixed : (c.tip_fixed < 0 || fixed);
     if (keep && !previous_kept) ++run;
@@ -136,19 +152,15 @@ std::vector<Sample> CollectSamples(const io::Log& log, const io::StandardColumns
     if (!keep) continue;
     Sample s;
     s.row = r;
+    s.state = inputs;
     Eigen::Vector2d effort(0.0, 0.0);
     // An unrecorded joint stays at rest at 0 (its prior): nothing is read from it.
     for (int j = 0; j < 2; ++j) {
       if (!problem.joint_recorded[j]) continue;
-      s.state.encoder_angle_rad[j] = log.Value(r, q[j]);
-      s.state.velocity_rad_s[j] = in.v[j][r];
-      s.state.effort_rate_nm_s[j] = in.effort_rate[j][r];
+      if (!in.centred_rate.empty()) s.state.effort_rate_nm_s[j] = in.centred_rate[r][j];
       effort[j] = log.Value(r, tau[j]);
       if (!problem.profile_tip) s.reference_rad[j] = log.Value(r, in.ref[j]);
     }
-    s.state.insertion_depth_m = log.Value(r, c.q3);
-    s.state.time_s = log.Value(r, c.t);
-    s.state.travel_since_reversal_rad = travel_rad;
     if (!s.state.encoder_angle_rad.allFinite() || !std::isfinite(s.state.insertion_depth_m) ||
         !effort.allFinite() || !s.reference_rad.allFinite())
       continue;
@@ -217,12 +229,9 @@ Problem BuildProblem(const io::Log& log, const std::string& log_path, const Base
   in.ref[1] = problem.reference == "q*_ref" ? c.q2_ref : c.q2_true;
   // A quasi-static log's t is a pose index: no velocity or effort rate is read from it.
   const bool quasi_static = log.header.QuasiStatic();
-  for (int j = 0; j < 2; ++j) {
-    if (!problem.joint_recorded[j]) continue;
-    in.v[j] = quasi_static ? std::vector<double>(log.Rows(), 0.0) : Velocity(log, c, j);
-    in.effort_rate[j] = quasi_static ? std::vector<double>(log.Rows(), 0.0)
-                                     : EffortRate(log, c, j, options.effort_rate_window_s);
-  }
+  in.quasi_static = quasi_static;
+  in.effort_rate_window_s = options.effort_rate_window_s;
+  if (!quasi_static) in.centred_rate = CentredEffortRates(log, c, options.effort_rate_window_s);
   if (quasi_static) {
     problem.notes.push_back("the log holds quasi-static means (# timing: quasi-static): no "
                             "velocity or effort rate is read from its t, so friction and an "
@@ -323,74 +332,6 @@ Problem BuildProblem(const io::Log& log, const std::string& log_path, const Base
                                         reference_sd * reference_sd);
   }
   return problem;
-}
-
-void ProfileGroups(const Problem& problem, std::vector<Eigen::Vector2d>& residual,
-                   const std::vector<bool>* only) {
-  if (!problem.profile_tip) return;
-  std::vector<Eigen::Vector2d> sum(problem.tip_groups, Eigen::Vector2d::Zero());
-  std::vector<Eigen::Vector2d> count(problem.tip_groups, Eigen::Vector2d::Zero());
-  for (std::size_t i = 0; i < residual.size(); ++i) {
-    const Sample& s = problem.samples[i];
-    if (only && !(*only)[s.group]) continue;
-    for (int j = 0; j < 2; ++j) {
-      if (!s.used[j]) continue;
-      sum[s.tip_group][j] += residual[i][j];
-      count[s.tip_group][j] += 1.0;
-    }
-  }
-  for (std::size_t i = 0; i < residual.size(); ++i) {
-    const Sample& s = problem.samples[i];
-    if (only && !(*only)[s.group]) continue;
-    for (int j = 0; j < 2; ++j) {
-      if (s.used[j]) residual[i][j] -= sum[s.tip_group][j] / count[s.tip_group][j];
-    }
-  }
-}
-
-std::vector<Eigen::Vector2d> Residuals(const Problem& problem, const BaseModel& model,
-                                       const std::vector<Term>& terms,
-                                       const std::vector<bool>* only) {
-  std::vector<const double*> values;
-  for (const Term& term : terms) values.push_back(term.parameters.data());
-  std::vector<Eigen::Vector2d> residual;
-  residual.reserve(problem.samples.size());
-  for (const Sample& s : problem.samples) {
-    Eigen::Vector2d r = ModelResidual<double>(s, model, terms, values);
-    for (int j = 0; j < 2; ++j) r[j] = s.used[j] ? r[j] : 0.0;
-    residual.push_back(r);
-  }
-  ProfileGroups(problem, residual, only);
-  return residual;
-}
-
-double TipRmsMm(const Problem& problem, const std::vector<Eigen::Vector2d>& residual,
-                const std::vector<bool>* keep_group) {
-  double sum[2] = {0.0, 0.0}, count[2] = {0.0, 0.0};
-  for (int j = 0; j < 2; ++j) {
-    double window_sum = 0.0, window_count = 0.0, window_start = 0.0;
-    int window_group = -1;
-    auto close = [&] {
-      if (window_count > 0.0) sum[j] += window_sum * window_sum / window_count;
-      window_sum = window_count = 0.0;
-    };
-    for (std::size_t i = 0; i < residual.size(); ++i) {
-      const Sample& s = problem.samples[i];
-      if (keep_group && !(*keep_group)[s.group]) continue;
-      if (!s.used[j]) continue;
-      if (s.group != window_group || s.state.time_s - window_start >= problem.rms_window_s) {
-        close();
-        window_group = s.group, window_start = s.state.time_s;
-      }
-      window_sum += residual[i][j] * s.mm_per_rad[j];
-      window_count += 1.0;
-      count[j] += 1.0;
-    }
-    close();
-  }
-  double mean_square = 0.0;
-  for (int j = 0; j < 2; ++j) mean_square += count[j] > 0.0 ? sum[j] / count[j] : 0.0;
-  return std::sqrt(mean_square);
 }
 
 }  // namespace pliant::estimation::diagnosis

@@ -135,13 +135,15 @@ std::vector<Eigen::Vector2d> Residuals(const Problem& problem, const BaseModel& 
 void ProfileGroups(const Problem& problem, std::vector<Eigen::Vector2d>& residual,
                    const std::vector<bool>* only = nullptr);
 
-/// Joint velocity (rad/s) from the log's v column, or by central differences
-/// of the encoder; joint 0 or 1.
-std::vector<double> Velocity(const io::Log& log, const io::StandardColumns& c, int joint);
-/// Rate of the measured effort (N·m/s): the slope of a least-squares line
-/// through the samples within ±window/2.
-std::vector<double> EffortRate(const io::Log& log, const io::StandardColumns& c, int joint,
-                               double window_s);
+/// A time step (s) beyond which the effects see a pose change, not motion:
+/// the filter's, so that both read a log's gaps alike.
+inline const double kTimeGapS = FilterOptions{}.time_gap_s;
+
+/// The effort's rate (N·m/s) at each row of a timed log: the slope of the
+/// least-squares line through the rows within ±window_s/2 of it that no gap
+/// (kTimeGapS) separates from it.
+std::vector<Eigen::Vector2d> CentredEffortRates(const io::Log& log, const io::StandardColumns& c,
+                                                double window_s);
 
 /// Builds the problem from a log. Throws io::InputError when there is no
 /// reference (no tip_fixed rows, no q*_ref / q*_true columns).

@@ -42,13 +42,31 @@ const models::JointState<double>& EffectInputs::Update(double time_s, const Eige
   return state_;
 }
 
-void EffectInputs::AddEffort(double time_s, const Eigen::Vector2d& effort_nm) {
-  // Time going back (another log, a restart) or a non-finite effort: start again.
+const models::JointState<double>& EffectInputs::Update(const io::StandardColumns& c,
+                                                       const double* row) {
+  const auto value = [row](int column) {
+    return column >= 0 ? row[column] : std::numeric_limits<double>::quiet_NaN();
+  };
+  return Update(value(c.t), Eigen::Vector3d(value(c.q1), value(c.q2), value(c.q3)),
+                Eigen::Vector2d(value(c.tau1), value(c.tau2)),
+                Eigen::Vector2d(value(c.v1), value(c.v2)));
+}
+
+void EffectInputs::AddEffort(double time_s, const Eigen::Vector2d& measured_nm) {
+  // Time going back (another log, a restart) or no effort at all: start again.
   const bool back = count_ > 0 && time_s < time_[(oldest_ + count_ - 1) % kRing];
-  if (back || !effort_nm.allFinite()) {
+  const bool none = !std::isfinite(measured_nm[0]) && !std::isfinite(measured_nm[1]);
+  if (back || none) {
     count_ = 0;
     Resum();
-    if (!effort_nm.allFinite()) return;
+    if (none) return;
+  }
+  // One joint without a sample (a single-joint log, a dropped value) repeats
+  // its last: the other joint's rate goes on.
+  Eigen::Vector2d effort_nm;
+  for (int j = 0; j < 2; ++j) {
+    if (std::isfinite(measured_nm[j])) last_effort_[j] = measured_nm[j];
+    effort_nm[j] = last_effort_[j];
   }
   if (count_ == 0) anchor_s_ = time_s;  // (an epoch's seconds would cancel in the sums)
   if (count_ == kRing) DropOldest();  // the ring is full
@@ -93,14 +111,8 @@ io::Log WithoutInternalTorque(const io::Log& log, const models::ModelParameters&
   if (effects.empty()) return out;
   const io::StandardColumns c(log.header);
   EffectInputs inputs(log.header.QuasiStatic());
-  const auto value = [&](std::size_t r, int column) {
-    return column >= 0 ? log.Value(r, std::size_t(column)) : std::numeric_limits<double>::quiet_NaN();
-  };
   for (std::size_t r = 0; r < log.Rows(); ++r) {
-    const Eigen::Vector3d q(value(r, c.q1), value(r, c.q2), value(r, c.q3));
-    const Eigen::Vector2d effort(value(r, c.tau1), value(r, c.tau2));
-    const auto& state = inputs.Update(value(r, c.t), q, effort,
-                                      Eigen::Vector2d(value(r, c.v1), value(r, c.v2)));
+    const auto& state = inputs.Update(c, &log.values[r * log.Columns()]);
     const Eigen::Vector2d internal = effects.InternalTorque(state);
     const int tau[2] = {c.tau1, c.tau2};
     for (int j = 0; j < 2; ++j) {

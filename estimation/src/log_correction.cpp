@@ -27,17 +27,11 @@ LogCorrectionSummary CorrectLog(const std::string& input_path, const std::string
   std::vector<double> row(header.columns.size());
   // What the file's effects read of each row, as the identification fitted them.
   EffectInputs inputs(header.QuasiStatic());
-  const auto velocity = [&](const double* values, int column) {
-    return column >= 0 ? values[column] : std::numeric_limits<double>::quiet_NaN();
-  };
   while (const double* values = reader.Next()) {
     std::copy(values, values + input_columns, row.begin());
     const Eigen::Vector3d q(values[in.q1], values[in.q2], values[in.q3]);
     const Eigen::Vector2d effort(values[in.tau1], values[in.tau2]);
-    const auto result = corrector.Correct(
-        inputs.Update(values[in.t], q, effort,
-                      Eigen::Vector2d(velocity(values, in.v1), velocity(values, in.v2))),
-        effort);
+    const auto result = corrector.Correct(inputs.Update(in, values), effort);
     row[q1_corr] = result.corrected_rad[0];
     row[q2_corr] = result.corrected_rad[1];
     writer.Write(row.data());

@@ -57,6 +57,27 @@ TEST(EffectInputs, PosesAndGapsHaveNoMotion) {
   }
 }
 
+// A one-joint log (no value in q2, tau2) read from its rows as every consumer reads
+// them: joint 1's rate is 0.5 N·m/s as if joint 2 were recorded, joint 2's 0;
+// a row with no effort at all starts the window again.
+TEST(EffectInputs, AOneJointLogKeepsItsJointsRate) {
+  io::LogHeader header;
+  header.columns = {"t", "q1", "q2", "q3", "tau1", "tau2"};
+  const io::StandardColumns columns(header);
+  EffectInputs inputs;
+  for (int k = 0; k < 10; ++k) {
+    const double t = 0.01 * k;
+    const double row[6] = {t, 0.02 * t, kNaN, 0.15, k == 5 ? kNaN : 0.2 + 0.5 * t, kNaN};
+    const auto& state = inputs.Update(columns, row);
+    EXPECT_EQ(state.effort_rate_nm_s[1], 0.0) << k;
+    // Three rows make a line: rows 2–4, then 8 on after the empty row 5.
+    const bool line = (k >= 2 && k < 5) || k >= 8;
+    if (line) EXPECT_NEAR(state.effort_rate_nm_s[0], 0.5, 1e-9) << k;
+    if (!line) EXPECT_EQ(state.effort_rate_nm_s[0], 0.0) << k;
+    if (k >= 1) EXPECT_NEAR(state.velocity_rad_s[0], 0.02, 1e-9) << k;
+  }
+}
+
 models::ModelParameters WithFriction() {
   models::ModelParameters p = models::PaperParameters();
   models::EffectParameters friction;

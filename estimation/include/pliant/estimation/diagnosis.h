@@ -68,7 +68,8 @@ struct DiagnoseOptions {
   /// the model's error, with the sensors' white noise averaged out. 0: per sample.
   double rms_window_s = 0.05;
   /// The effort's rate (for the effort_delay candidate) is the slope of a
-  /// line through the samples within this window (s).
+  /// line through this window of samples (s), centred on its row: the line
+  /// EffectInputs streams, read half a window later.
   double effort_rate_window_s = 0.1;
   /// Lags of the Ljung–Box test of whiteness.
   int ljung_box_lags = 20;

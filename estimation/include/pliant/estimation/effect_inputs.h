@@ -1,9 +1,9 @@
 #pragma once
 // What a catalogue effect sees of each row of a log, tracked row by row for
-// the consumers that stream a log (pliant correct, the filter and with it the
-// smoother): the same channels the identification and the diagnosis fit the
-// effects on (models::JointState), so that an effect a parameters file holds
-// acts on every consumer as it was fitted.
+// every consumer: the diagnosis and identify --effect fit the effects on
+// these inputs, and pliant correct, the filter (and with it the smoother)
+// stream a log through them, so that an effect a parameters file holds acts
+// on every consumer as it was fitted.
 
 #include <array>
 #include <limits>
@@ -23,8 +23,9 @@ class EffectInputs {
   /// effort rate, as the diagnosis reads such a log; so is a row more than
   /// max_step_s after the last (a pose log without its mark, a time gap:
   /// FilterOptions::time_gap_s). effort_rate_window_s: the span of the
-  /// effort's rate line (the diagnosis's, centred there; here the last
-  /// window_s of rows, for a stream has no later rows).
+  /// effort's rate line through the last window_s of rows (causal: a stream
+  /// has no later rows; the fit reads the same line centred on its row,
+  /// diagnosis::CentredEffortRates).
   explicit EffectInputs(bool quasi_static = false, double max_step_s = 0.1,
                         double effort_rate_window_s = 0.1);
 
@@ -35,6 +36,10 @@ class EffectInputs {
   const models::JointState<double>& Update(double time_s, const Eigen::Vector3d& q,
                                            const Eigen::Vector2d& effort_nm,
                                            const Eigen::Vector2d& velocity_rad_s);
+  /// The same from one row of a log (its values in `columns`' order; a
+  /// column the log lacks reads NaN): what every consumer that walks a log
+  /// feeds it.
+  const models::JointState<double>& Update(const io::StandardColumns& columns, const double* row);
   const models::JointState<double>& state() const { return state_; }
 
  private:
@@ -53,6 +58,7 @@ class EffectInputs {
   // anchor time, re-added from the ring every kRing rows (no drift).
   static constexpr int kRing = 512;
   std::array<double, kRing> time_{}, effort_[2]{};
+  double last_effort_[2] = {0.0, 0.0};  // what a missing sample of one joint repeats
   int oldest_ = 0, count_ = 0, since_resum_ = 0;
   double anchor_s_ = 0.0, n_ = 0.0, st_ = 0.0, stt_ = 0.0, sy_[2] = {0.0, 0.0},
          sty_[2] = {0.0, 0.0};
