@@ -231,7 +231,8 @@ Problem BuildProblem(const io::Log& log, const std::string& log_path, const Base
   const bool quasi_static = log.header.QuasiStatic();
   in.quasi_static = quasi_static;
   in.effort_rate_window_s = options.effort_rate_window_s;
-  if (!quasi_static) in.centred_rate = CentredEffortRates(log, c, options.effort_rate_window_s);
+  if (!quasi_static)
+    in.centred_rate = CentredEffortRates(log, options.effort_rate_window_s, kTimeGapS);
   if (quasi_static) {
     problem.notes.push_back("the log holds quasi-static means (# timing: quasi-static): no "
                             "velocity or effort rate is read from its t, so friction and an "

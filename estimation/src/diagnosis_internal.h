@@ -139,12 +139,6 @@ void ProfileGroups(const Problem& problem, std::vector<Eigen::Vector2d>& residua
 /// the filter's, so that both read a log's gaps alike.
 inline const double kTimeGapS = FilterOptions{}.time_gap_s;
 
-/// The effort's rate (N·m/s) at each row of a timed log: the slope of the
-/// least-squares line through the rows within ±window_s/2 of it that no gap
-/// (kTimeGapS) separates from it.
-std::vector<Eigen::Vector2d> CentredEffortRates(const io::Log& log, const io::StandardColumns& c,
-                                                double window_s);
-
 /// Builds the problem from a log. Throws io::InputError when there is no
 /// reference (no tip_fixed rows, no q*_ref / q*_true columns).
 Problem BuildProblem(const io::Log& log, const std::string& log_path, const BaseModel& model,

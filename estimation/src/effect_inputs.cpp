@@ -1,5 +1,6 @@
 #include "pliant/estimation/effect_inputs.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -105,14 +106,44 @@ void EffectInputs::Resum() {
   for (int k = 0; k < count_; ++k) Sum((oldest_ + k) % kRing, 1.0);
 }
 
+// The stream's trailing line (EffectInputs) read half a window later, at the
+// last row of the same stretch (no gap) no later than t + w/2: the fit has the
+// whole log, and the centred line finds an effort delay's physical value where
+// the trailing one, w/2 late, finds less (decision record effect-inputs.md).
+std::vector<Eigen::Vector2d> CentredEffortRates(const io::Log& log, double window_s,
+                                                double max_step_s) {
+  const std::size_t n = log.Rows();
+  std::vector<Eigen::Vector2d> trailing(n), centred(n, Eigen::Vector2d::Zero());
+  if (log.header.QuasiStatic()) return centred;
+  const io::StandardColumns c(log.header);
+  std::vector<bool> starts(n, true);  // the first row of a stretch
+  EffectInputs tracker(false, max_step_s, window_s);
+  for (std::size_t r = 0; r < n; ++r) {
+    trailing[r] = tracker.Update(c, &log.values[r * log.Columns()]).effort_rate_nm_s;
+    const double dt = r > 0 ? log.Value(r, c.t) - log.Value(r - 1, c.t) : -1.0;
+    starts[r] = !(dt >= 0.0 && dt <= max_step_s);
+  }
+  std::size_t k = 0;
+  for (std::size_t r = 0; r < n; ++r) {
+    k = std::max(k, r);
+    const double until = log.Value(r, c.t) + 0.5 * window_s;
+    while (k + 1 < n && !starts[k + 1] && log.Value(k + 1, c.t) <= until) ++k;
+    centred[r] = trailing[k];
+  }
+  return centred;
+}
+
 io::Log WithoutInternalTorque(const io::Log& log, const models::ModelParameters& parameters) {
   io::Log out = log;
   const ExtraEffects effects(parameters.effects);
   if (effects.empty()) return out;
   const io::StandardColumns c(log.header);
   EffectInputs inputs(log.header.QuasiStatic());
+  // As the effects were fitted beside it: the effort's rate centred.
+  const std::vector<Eigen::Vector2d> rate = CentredEffortRates(log);
   for (std::size_t r = 0; r < log.Rows(); ++r) {
-    const auto& state = inputs.Update(c, &log.values[r * log.Columns()]);
+    models::JointState<double> state = inputs.Update(c, &log.values[r * log.Columns()]);
+    state.effort_rate_nm_s = rate[r];
     const Eigen::Vector2d internal = effects.InternalTorque(state);
     const int tau[2] = {c.tau1, c.tau2};
     for (int j = 0; j < 2; ++j) {

@@ -7,6 +7,7 @@
 
 #include <array>
 #include <limits>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -64,9 +65,18 @@ class EffectInputs {
          sty_[2] = {0.0, 0.0};
 };
 
+/// The effort's rate (N·m/s) at each row of a whole log, for the consumers
+/// that fit on it (the diagnosis, identify --effect): the slope of the
+/// least-squares line through the rows within ±window_s/2 that no gap (a step
+/// beyond max_step_s) separates from the row — EffectInputs' trailing line
+/// read half a window later. 0 on a quasi-static log.
+std::vector<Eigen::Vector2d> CentredEffortRates(const io::Log& log, double window_s = 0.1,
+                                                double max_step_s = 0.1);
+
 /// The log with the internal torque of `parameters`' effects taken out of
-/// its efforts, row by row at EffectInputs' inputs: what a bias table fitted
-/// beside those effects should read.
+/// its efforts, row by row at EffectInputs' inputs (the effort's rate
+/// centred, as the effects were fitted): what a bias table fitted beside
+/// those effects should read.
 io::Log WithoutInternalTorque(const io::Log& log, const models::ModelParameters& parameters);
 
 }  // namespace pliant::estimation
