@@ -250,8 +250,14 @@ Diagnosis Diagnose(const io::Log& log, const std::string& log_path,
   for (const auto& name : options.added_effects) added.push_back(diagnosis::MakeTerm(name));
   std::vector<std::string> names = options.candidates.empty() ? CandidateEffectNames() : options.candidates;
 
-  const diagnosis::BaseModel model(parameters);
+  // The file's own effects are part of the model compared (an --add of one
+  // of them fits it again instead).
+  const diagnosis::BaseModel model(parameters, options.added_effects);
   Problem problem = diagnosis::BuildProblem(log, log_path, model, added, options);
+  for (const Term& t : model.file_effects()) {
+    problem.notes.push_back("the parameters hold " + t.name +
+                            ": it is part of the model compared, not a candidate");
+  }
   diagnosis::SetRecalibration(model, options.recalibrate_base, &problem);
   const std::vector<bool> all(problem.groups, true);
   Diagnosis d;
@@ -304,12 +310,19 @@ Diagnosis Diagnose(const io::Log& log, const std::string& log_path,
   for (const auto& name : names) {
     const auto& a = options.added_effects;
     if (std::find(a.begin(), a.end(), name) != a.end()) continue;  // already in the model
+    const auto& held = model.file_effects();
+    if (std::any_of(held.begin(), held.end(), [&](const Term& t) { return t.name == name; }))
+      continue;
     const Term candidate = diagnosis::MakeTerm(name);
     if (candidate.parameters.empty()) continue;  // nothing to fit: no size, no test
+    // A quasi-static log's t is a pose index: what changes in time is not read
+    // from it (its note says so).
+    const auto channels = diagnosis::ChannelsOf(*candidate.effect);
+    if (problem.quasi_static && std::count(channels.begin(), channels.end(), "t")) continue;
     auto c =
         diagnosis::EvaluateCandidate(problem, model, fixed, candidate, recalibrated,
                                      heldout_baseline, baseline_rms);
-    c.finding.channels = diagnosis::ChannelsOf(*candidate.effect);
+    c.finding.channels = channels;
     candidates.push_back(std::move(c));
   }
   std::vector<double> p;

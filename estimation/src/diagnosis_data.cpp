@@ -8,6 +8,7 @@
 #include "diagnosis_internal.h"
 #include "pliant/io/input_error.h"
 #include "pliant/estimation/effect_inputs.h"
+#include "pliant/estimation/extra_effects.h"
 #include "pliant/models/psm_kinematics.h"
 
 namespace pliant::estimation::diagnosis {
@@ -78,10 +79,18 @@ std::string ChooseReference(const io::Log& log, const io::StandardColumns& c,
 
 }  // namespace
 
-BaseModel::BaseModel(const models::ModelParameters& parameters)
+BaseModel::BaseModel(const models::ModelParameters& parameters,
+                     const std::vector<std::string>& refitted)
     : parameters_(parameters),
       compliance_(parameters.joints[0], parameters.joints[1]),
       deadzone_(DeadZoneOf(parameters)) {
+  const ExtraEffects effects(parameters.effects);
+  for (std::size_t i = 0; i < effects.models().size(); ++i) {
+    const std::string name(effects.models()[i]->Info().name);
+    if (std::find(refitted.begin(), refitted.end(), name) != refitted.end()) continue;
+    file_effects_.push_back({EffectCatalogue::Global().Create(name), effects.values()[i], name});
+    file_jets_.emplace_back(effects.values()[i].begin(), effects.values()[i].end());
+  }
   for (const auto& joint : parameters.joints) {
     compliance_values_.insert(compliance_values_.end(), joint.compliance.cubic.coefficients.begin(),
                               joint.compliance.cubic.coefficients.end());
@@ -172,6 +181,7 @@ std::vector<Sample> CollectSamples(const io::Log& log, const io::StandardColumns
               : 0.0;
     }
     models::JointState<double> loaded = s.state;
+    model.TakeOutInternalTorque(&loaded);
     for (std::size_t i = 0; i < added.size(); ++i) {
       if (added[i].effect->Info().channel == models::Channel::kInternalTorque)
         loaded.external_torque_nm -= added[i].effect->Evaluate(values[i], loaded);
@@ -229,7 +239,7 @@ Problem BuildProblem(const io::Log& log, const std::string& log_path, const Base
   in.ref[1] = problem.reference == "q*_ref" ? c.q2_ref : c.q2_true;
   // A quasi-static log's t is a pose index: no velocity or effort rate is read from it.
   const bool quasi_static = log.header.QuasiStatic();
-  in.quasi_static = quasi_static;
+  in.quasi_static = problem.quasi_static = quasi_static;
   in.effort_rate_window_s = options.effort_rate_window_s;
   if (!quasi_static)
     in.centred_rate = CentredEffortRates(log, options.effort_rate_window_s, kTimeGapS);

@@ -12,6 +12,7 @@
 #include <cstddef>
 #include <memory>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include <Eigen/Core>
@@ -56,6 +57,7 @@ struct Problem {
   int folds = 1;
   Eigen::Vector2d noise_sd_rad{1e-3, 1e-3};  ///< measurement noise of the residual
   bool joint_recorded[2] = {true, true};    ///< false: the joint stays at its prior, unused
+  bool quasi_static = false;  ///< rows are poses: no time, motion or effort rate is read
   /// Terms refitted with every candidate and in the baseline it is scored
   /// against (the base model's recalibration), empty when off.
   std::vector<Term> refit;
@@ -69,17 +71,37 @@ struct Problem {
 /// from Sample::state), compliance and dead-zone backlash, plus effect terms.
 class BaseModel {
  public:
-  explicit BaseModel(const models::ModelParameters& parameters);
+  /// The parameters' model with the effects the file holds, at their values,
+  /// but those named in `refitted` (fitted again as added terms).
+  explicit BaseModel(const models::ModelParameters& parameters,
+                     const std::vector<std::string>& refitted = {});
 
-  /// Encoder minus tip angle the model predicts, given the external torque.
+  /// Encoder minus tip angle the model predicts, given the external torque:
+  /// compliance, dead zone and the file's deflection effects.
   template <typename T>
   models::Vec2<T> BaseDeflection(const models::JointState<T>& state) const {
     std::array<T, 8> law;
     for (int i = 0; i < 8; ++i) law[i] = T(compliance_values_[i]);
     const T backlash[4] = {T(deadzone_values_[0]), T(deadzone_values_[1]),
                            T(deadzone_values_[2]), T(deadzone_values_[3])};
-    return compliance_(law.data(), state) + deadzone_(backlash, state);
+    models::Vec2<T> deflection = compliance_(law.data(), state) + deadzone_(backlash, state);
+    for (std::size_t i = 0; i < file_effects_.size(); ++i) {
+      if (file_effects_[i].effect->Info().channel == models::Channel::kDeflection)
+        deflection += file_effects_[i].effect->Evaluate(FileValues<T>(i), state);
+    }
+    return deflection;
   }
+  /// Takes the internal torque of the file's effects out of the state's
+  /// external torque (the measured effort less the bias).
+  template <typename T>
+  void TakeOutInternalTorque(models::JointState<T>* state) const {
+    for (std::size_t i = 0; i < file_effects_.size(); ++i) {
+      if (file_effects_[i].effect->Info().channel == models::Channel::kInternalTorque)
+        state->external_torque_nm -= file_effects_[i].effect->Evaluate(FileValues<T>(i), *state);
+    }
+  }
+  /// The effects of the parameters file in the model (not candidates).
+  const std::vector<Term>& file_effects() const { return file_effects_; }
   /// The width the model's dead zone takes the clearance up over (N·m).
   double clearance_load_nm(int joint) const { return clearance_load_nm_[joint]; }
   /// The load a row's compared beyond (times DiagnoseOptions::min_load_factor):
@@ -89,7 +111,18 @@ class BaseModel {
   const models::ModelParameters& parameters() const { return parameters_; }
 
  private:
+  template <typename T>
+  const T* FileValues(std::size_t i) const {
+    if constexpr (std::is_same_v<T, double>) {
+      return file_effects_[i].parameters.data();
+    } else {
+      return file_jets_[i].data();
+    }
+  }
+
   models::ModelParameters parameters_;
+  std::vector<Term> file_effects_;
+  std::vector<std::vector<EffectJet>> file_jets_;  // the same values, constant Jets
   models::ComplianceEffect compliance_;
   models::BacklashDeadZoneEffect deadzone_;
   std::vector<double> compliance_values_;
@@ -106,6 +139,7 @@ template <typename T>
 models::Vec2<T> ModelResidual(const Sample& sample, const BaseModel& model,
                               const std::vector<Term>& terms, const std::vector<const T*>& values) {
   models::JointState<T> state = sample.state.Cast<T>();
+  model.TakeOutInternalTorque(&state);
   for (std::size_t i = 0; i < terms.size(); ++i) {
     if (terms[i].effect->Info().channel == models::Channel::kInternalTorque)
       state.external_torque_nm -= terms[i].effect->Evaluate(values[i], state);

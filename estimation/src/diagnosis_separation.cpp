@@ -57,24 +57,31 @@ std::string Describe(const Condition& c) {
 std::string SeparatingExperiment(const Problem& problem, const BaseModel& model,
                                  const std::vector<Term>& fixed, const Term& a, const Term& b) {
   if (problem.samples.empty()) return "";
-  // The log's typical push: its median sample, pushed +1 N·m on joint 1.
+  // The log's typical push: its median sample, pushed +1 N·m on its first
+  // recorded joint.
   const Sample& typical = problem.samples[problem.samples.size() / 2];
   double t_end = 0.0;
   for (const Sample& s : problem.samples) t_end = std::max(t_end, s.state.time_s);
   const auto& joint1 = model.parameters().joints[0];
   const double depth_lo = joint1.depth_min_m > 0.0 ? joint1.depth_min_m : 0.09;
   const double depth_hi = joint1.depth_max_m > depth_lo ? joint1.depth_max_m : 0.22;
-  Condition reference{0, typical.state.insertion_depth_m, 1.0, 0.5 * t_end, false};
+  // Only what the log can show: a recorded joint, and no time or motion on a
+  // log of poses.
+  const int first = problem.joint_recorded[0] ? 0 : 1;
+  const bool poses = problem.quasi_static;
+  Condition reference{first, typical.state.insertion_depth_m, 1.0, 0.5 * t_end, false};
   const Eigen::Vector2d ra = Change(typical, model, fixed, a, reference);
   const Eigen::Vector2d rb = Change(typical, model, fixed, b, reference);
   Condition best = reference;
   double best_gap = -1.0;
   Eigen::Vector2d best_a = ra, best_b = rb;
-  for (int joint = 0; joint < 2; ++joint) {
+  for (int joint = first; joint < 2; ++joint) {
+    if (!problem.joint_recorded[joint]) continue;
     for (double depth : {depth_lo, 0.5 * (depth_lo + depth_hi), depth_hi}) {
       for (double load : {-2.0, -1.0, -0.5, 0.5, 1.0, 2.0}) {
         for (double time : {0.0, 0.5 * t_end, std::max(600.0, 2.0 * t_end)}) {
           for (bool moving : {false, true}) {
+            if (poses && (moving || time != reference.time_s)) continue;
             const Condition c{joint, depth, load, time, moving};
             const Eigen::Vector2d ca = Change(typical, model, fixed, a, c) - ra;
             const Eigen::Vector2d cb = Change(typical, model, fixed, b, c) - rb;
@@ -87,10 +94,10 @@ std::string SeparatingExperiment(const Problem& problem, const BaseModel& model,
   }
   char text[400];
   std::snprintf(text, sizeof text,
-                "%s: %s predicts %.3f mm at the tip, %s %.3f mm (each against a hold of joint 1 "
+                "%s: %s predicts %.3f mm at the tip, %s %.3f mm (each against a hold of joint %d "
                 "at +1 N·m, depth %.3f m, mid-log); they differ by %.3f mm there",
                 Describe(best).c_str(), a.name.c_str(), best_a.norm(), b.name.c_str(),
-                best_b.norm(), reference.depth_m, best_gap);
+                best_b.norm(), first + 1, reference.depth_m, best_gap);
   return text;
 }
 

@@ -133,7 +133,8 @@ LogEffectFit FitEffectsOnLogs(const std::vector<NamedLog>& logs,
   using diagnosis::Term;
   std::vector<Term> added;
   for (const auto& name : names) added.push_back(diagnosis::MakeTerm(name));
-  const diagnosis::BaseModel model(parameters);
+  // The file's other effects stay in the model at their values.
+  const diagnosis::BaseModel model(parameters, names);
   // The identification reads the tip only where it was held: the truth a
   // simulated log carries (q*_true) is for scoring, never for fitting.
   options.reference = "tip_fixed";

@@ -3,6 +3,7 @@
 // own effect joining the ranking, and bad input.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -75,6 +76,36 @@ TEST(DiagnoseAdd, RefittingWithTheMissingEffectRemovesIt) {
   EXPECT_FALSE(d.missing_effect.has_value());
   for (const auto& f : d.effects) EXPECT_NE(f.name, "joint_friction");
   EXPECT_LT(d.after.rms_mm, 0.5 * d.before.rms_mm);
+}
+
+// The effects a parameters file holds are part of the model the diagnosis
+// compares, as in every other consumer: a log with joint friction, diagnosed
+// with the friction in the file at the simulator's values, leaves no more
+// than the control's error, names nothing and does not offer the friction
+// again; the same file without it leaves twice that.
+TEST(DiagnoseFileEffects, AnEffectTheFileHoldsIsPartOfTheModel) {
+  const auto scenario = ShortDivot(R"({"joint_friction":{"coulomb1":0.05,"coulomb2":0.05}})");
+  const io::Log log = experiments::Simulate(scenario, 5).log;
+  models::ModelParameters with = ModelOf(scenario);
+  const auto friction = estimation::EffectCatalogue::Global().Create("joint_friction");
+  models::EffectParameters held;
+  held.name = "joint_friction";
+  for (const auto& spec : friction->Parameters()) {
+    held.parameter_names.push_back(spec.name);
+    held.values.push_back(spec.name.rfind("coulomb", 0) == 0 ? 0.05 : spec.default_value);
+    held.sd.push_back(0.0);
+  }
+  with.effects.push_back(held);
+  const Diagnosis d = Diagnose(log, "divot.csv", with, {});
+  const Diagnosis without = Diagnose(log, "divot.csv", ModelOf(scenario), {});
+  std::printf("  rms before %.4f mm with the file's friction, %.4f mm without\n", d.rms_before_mm,
+              without.rms_before_mm);
+  EXPECT_FALSE(d.missing_effect.has_value());
+  for (const auto& f : d.effects) EXPECT_NE(f.name, "joint_friction");
+  EXPECT_LT(2.0 * d.rms_before_mm, without.rms_before_mm);
+  EXPECT_NE(std::find_if(d.notes.begin(), d.notes.end(),
+                         [](const std::string& n) { return n.find("hold joint_friction") != std::string::npos; }),
+            d.notes.end());
 }
 
 // A user's effect: a shaft bent a little at rest straightens under load
