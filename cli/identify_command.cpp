@@ -164,6 +164,19 @@ std::optional<estimation::LogEffectFit> FitEffects(const IdentifyOptions& option
   return fit;
 }
 
+// The parameters with only the effects named by --effect: what the second
+// pass takes out of the efforts (the base's own, a held friction, stays in).
+models::ModelParameters WithOnlyTheNamed(models::ModelParameters parameters,
+                                         const std::vector<std::string>& names) {
+  auto& e = parameters.effects;
+  e.erase(std::remove_if(e.begin(), e.end(),
+                         [&](const models::EffectParameters& effect) {
+                           return std::find(names.begin(), names.end(), effect.name) == names.end();
+                         }),
+          e.end());
+  return parameters;
+}
+
 // Whether the file holds an effect on the measured effort (internal torque).
 bool ReadsTheEffort(const models::ModelParameters& parameters) {
   const estimation::ExtraEffects effects(parameters.effects);
@@ -268,14 +281,16 @@ void RunIdentify(const IdentifyOptions& options) {
                                    options.law + ") from " + std::to_string(options.logs.size()) +
                                    " log(s)";
   auto effects = FitEffects(options, logs, &result);
-  if (effects && ReadsTheEffort(result.parameters)) {
+  const models::ModelParameters named =
+      effects ? WithOnlyTheNamed(result.parameters, options.effects) : models::ModelParameters{};
+  if (effects && ReadsTheEffort(named)) {
     // An internal-torque effect was in the efforts the base fit read: its
     // bias table took up what the effect puts there at the calibration's
     // poses, which the effect beside it would then count twice. Once more:
     // the base on the efforts without the effects, then the effects.
     estimation::IdentificationData without;
     for (std::size_t i = 0; i < logs.size(); ++i) {
-      estimation::AppendSamples(estimation::WithoutInternalTorque(logs[i], result.parameters),
+      estimation::AppendSamples(estimation::WithoutInternalTorque(logs[i], named),
                                 options.logs[i], {}, &without);
     }
     const std::string description = result.parameters.description;
