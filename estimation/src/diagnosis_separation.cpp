@@ -45,11 +45,17 @@ Eigen::Vector2d Change(const Sample& typical, const BaseModel& model, const std:
   return (a - b).cwiseProduct(typical.mm_per_rad);
 }
 
-std::string Describe(const Condition& c) {
+// A log of poses has no time to name (its t is a pose index).
+std::string Describe(const Condition& c, bool poses) {
   char text[200];
-  std::snprintf(text, sizeof text, "%s joint %d to %+.1f N·m at depth %.3f m, %.0f s into the log",
-                c.moving ? "ramp" : "hold", c.joint + 1, c.load_nm, c.depth_m, c.time_s);
-  return text;
+  std::snprintf(text, sizeof text, "%s joint %d to %+.1f N·m at depth %.3f m", c.moving ? "ramp" : "hold",
+                c.joint + 1, c.load_nm, c.depth_m);
+  std::string out = text;
+  if (!poses) {
+    std::snprintf(text, sizeof text, ", %.0f s into the log", c.time_s);
+    out += text;
+  }
+  return out;
 }
 
 }  // namespace
@@ -96,7 +102,7 @@ std::string SeparatingExperiment(const Problem& problem, const BaseModel& model,
   std::snprintf(text, sizeof text,
                 "%s: %s predicts %.3f mm at the tip, %s %.3f mm (each against a hold of joint %d "
                 "at +1 N·m, depth %.3f m, mid-log); they differ by %.3f mm there",
-                Describe(best).c_str(), a.name.c_str(), best_a.norm(), b.name.c_str(),
+                Describe(best, poses).c_str(), a.name.c_str(), best_a.norm(), b.name.c_str(),
                 best_b.norm(), first + 1, reference.depth_m, best_gap);
   return text;
 }

@@ -35,6 +35,27 @@ TEST(SeparatingExperiment, NamesTheConditionWhereThePredictionsDifferMost) {
   EXPECT_NE(text.find("they differ by 1.000 mm"), std::string::npos) << text;
 }
 
+// A log of poses with joint 2 alone recorded (a real one-joint clamp): the
+// experiment loads joint 2, holds, and names no time (its t is a pose index).
+TEST(SeparatingExperiment, OnALogOfPosesItHoldsARecordedJointAndNamesNoTime) {
+  const BaseModel model(testing::ModelOf(testing::ShortDivot("{}")));
+  Problem problem;
+  problem.quasi_static = true;
+  problem.joint_recorded[0] = false;
+  Sample s;
+  s.state.insertion_depth_m = 0.15;
+  s.state.time_s = 300.0;
+  s.used = {false, true};
+  s.mm_per_rad = {0.0, 100.0};
+  problem.samples = {s};
+  const Term cubic = Fitted("load_dependent_compliance", {0.0, 0.002});
+  const Term none = Fitted("load_dependent_compliance", {0.0, 0.0});
+  const std::string text = SeparatingExperiment(problem, model, {}, cubic, none);
+  EXPECT_EQ(text.rfind("hold joint 2 to ", 0), 0u) << text;
+  EXPECT_EQ(text.find("into the log"), std::string::npos) << text;
+  EXPECT_EQ(text.find("joint 1"), std::string::npos) << text;
+}
+
 // An effort drift (a·(1 − e^(−t/T)), 0.05 N·m, T 20 s) against no effect:
 // the largest gap is the latest time tried, where joint 1's offset has
 // settled: relative to mid-log (t = 10 s) the drift changes joint 1's
