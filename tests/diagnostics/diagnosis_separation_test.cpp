@@ -8,6 +8,20 @@
 namespace pliant::estimation::diagnosis {
 namespace {
 
+// One compared sample at 0.15 m, t seconds in, 100 mm per rad on the joints
+// it uses.
+Problem OneSample(double time_s, bool joint1 = true, bool joint2 = true) {
+  Problem problem;
+  problem.joint_recorded[0] = joint1, problem.joint_recorded[1] = joint2;
+  Sample s;
+  s.state.insertion_depth_m = 0.15;
+  s.state.time_s = time_s;
+  s.used = {joint1, joint2};
+  s.mm_per_rad = {joint1 ? 100.0 : 0.0, joint2 ? 100.0 : 0.0};
+  problem.samples = {s};
+  return problem;
+}
+
 Term Fitted(const std::string& name, std::vector<double> parameters) {
   std::shared_ptr<const EffectModel> effect = EffectCatalogue::Global().Create(name);
   return {effect, std::move(parameters), name};
@@ -19,13 +33,7 @@ Term Fitted(const std::string& name, std::vector<double> parameters) {
 // 0.005 · 2 rad × 100 mm/rad = 1 mm.
 TEST(SeparatingExperiment, NamesTheConditionWhereThePredictionsDifferMost) {
   const BaseModel model(testing::ModelOf(testing::ShortDivot("{}")));
-  Problem problem;
-  Sample s;
-  s.state.insertion_depth_m = 0.15;
-  s.state.time_s = 20.0;
-  s.used = {true, true};
-  s.mm_per_rad = {100.0, 100.0};
-  problem.samples = {s};
+  const Problem problem = OneSample(20.0);
   const Term coupling = Fitted("deflection_coupling", {0.005, 0.0});
   const Term cubic = Fitted("load_dependent_compliance", {0.0, 0.0});
   const std::string text = SeparatingExperiment(problem, model, {}, coupling, cubic);
@@ -39,15 +47,8 @@ TEST(SeparatingExperiment, NamesTheConditionWhereThePredictionsDifferMost) {
 // experiment loads joint 2, holds, and names no time (its t is a pose index).
 TEST(SeparatingExperiment, OnALogOfPosesItHoldsARecordedJointAndNamesNoTime) {
   const BaseModel model(testing::ModelOf(testing::ShortDivot("{}")));
-  Problem problem;
+  Problem problem = OneSample(300.0, false, true);
   problem.quasi_static = true;
-  problem.joint_recorded[0] = false;
-  Sample s;
-  s.state.insertion_depth_m = 0.15;
-  s.state.time_s = 300.0;
-  s.used = {false, true};
-  s.mm_per_rad = {0.0, 100.0};
-  problem.samples = {s};
   const Term cubic = Fitted("load_dependent_compliance", {0.0, 0.002});
   const Term none = Fitted("load_dependent_compliance", {0.0, 0.0});
   const std::string text = SeparatingExperiment(problem, model, {}, cubic, none);
@@ -62,13 +63,7 @@ TEST(SeparatingExperiment, OnALogOfPosesItHoldsARecordedJointAndNamesNoTime) {
 // deflection by K1(L)·0.05·e^(−0.5), at the depth of the largest K.
 TEST(SeparatingExperiment, ADriftIsSeparatedByHoldingLonger) {
   const BaseModel model(testing::ModelOf(testing::ShortDivot("{}")));
-  Problem problem;
-  Sample s;
-  s.state.insertion_depth_m = 0.15;
-  s.state.time_s = 20.0;
-  s.used = {true, true};
-  s.mm_per_rad = {100.0, 100.0};
-  problem.samples = {s};
+  const Problem problem = OneSample(20.0);
   const Term drift = Fitted("effort_drift", {0.05, 0.0, 20.0});
   const Term none = Fitted("effort_drift", {0.0, 0.0, 20.0});
   const std::string text = SeparatingExperiment(problem, model, {}, drift, none);
