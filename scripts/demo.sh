@@ -7,6 +7,8 @@
 #   R2. corrects the real clamped beam of joint 1 with the identified file;
 #   R3. diagnoses that real log against the paper's form (identified without
 #       the held friction): which effect the real data show that it lacks;
+#   R4. diagnoses it against the identified file, the held friction part of
+#       the model: what is still missing;
 # then the simulated showcase, where the truth is known:
 #   1. identifies the instrument from the simulated calibration logs (bias
 #      sweep + clamped beam), with the covariance of every parameter;
@@ -40,6 +42,10 @@ $pliant identify --no-held-friction $real/jhu2017_bias_j1.csv $real/jhu2017_clam
   -o out/real_paper_form.json > /dev/null 2>&1
 $pliant diagnose --params out/real_paper_form.json $real/jhu2017_clamped_j1.csv \
   -o out/real_diagnosis | sed -n -e '1,4p' -e '/candidate effects/,/^    3\./p'
+echo
+echo "== R4. diagnose: the same log against the identified file (its held friction in the model)"
+$pliant diagnose --params out/real.json $real/jhu2017_clamped_j1.csv \
+  -o out/real_diagnosis_identified | sed -n -e '1,4p' -e '/candidate effects/,/^    2\./p'
 echo
 echo "== 1. identify: calibration logs -> out/identified.json"
 $pliant identify data/bias_sweep.csv data/clamped_beam.csv -o out/identified.json \
