@@ -152,6 +152,9 @@ TakeUpProbe ProbeWideTakeUp(const io::Log& log, const std::string& log_path,
   BaseModel model(parameters);
   bool wide = false;
   for (int j = 0; j < 2; ++j) {
+    // No clearance (δ identified 0, as on the real joint 2 clamps), or a
+    // joint the log does not record: no take-up to look into.
+    if (!(parameters.joints[j].backlash_rad > 0.0) || !log.header.JointRecorded(j + 1)) continue;
     const double narrow = NarrowTakeUpNm(parameters.joints[j]);
     wide = wide || model.clearance_load_nm(j) > kWideTakeUpFactor * narrow;
     if (model.clearance_load_nm(j) > narrow) model.set_compared_load_nm(j, narrow);

@@ -141,20 +141,19 @@ bool Names(const nlohmann::ordered_json& list, const std::string& name) {
 // names the held friction the data show (measured: removes 39.6 % of the
 // held-out error, p 2.4e-08; before the travel since reversal reached the
 // diagnosis, 0 %), and adding it lowers the held-out error.
-// pliant identify (with `flags`) on the real joint 1 sweep and clamps, then
-// pliant diagnose --json of the clamps against that file.
-CommandResult DiagnoseRealClampsJ1(const std::string& name, const std::string& flags) {
+// pliant identify (with `flags`) on the real sweep and clamps of `joint`,
+// then pliant diagnose --json of the clamps against that file.
+CommandResult DiagnoseRealClamps(const std::string& name, int joint, const std::string& flags) {
   const auto dir = FreshDirectory(name);
-  const std::string real = kSource + "/data/real/";
-  const auto fit = RunIn(dir, kCli + " identify " + flags + " " + real + "jhu2017_bias_j1.csv " +
-                                  real + "jhu2017_clamped_j1.csv -o p.json");
+  const std::string real = kSource + "/data/real/jhu2017_", j = "_j" + std::to_string(joint) + ".csv";
+  const auto fit = RunIn(dir, kCli + " identify " + flags + " " + real + "bias" + j + " " + real +
+                                  "clamped" + j + " -o p.json");
   EXPECT_EQ(fit.exit_code, 0) << fit.err;
-  return RunIn(dir, kCli + " diagnose --json --params p.json " + real +
-                        "jhu2017_clamped_j1.csv -o report");
+  return RunIn(dir, kCli + " diagnose --json --params p.json " + real + "clamped" + j + " -o report");
 }
 
 TEST(DiagnoseCommand, TheRealClampedBeamLacksTheHeldFriction) {
-  const auto r = DiagnoseRealClampsJ1("diagnose_real_held_friction", "--no-held-friction");
+  const auto r = DiagnoseRealClamps("diagnose_real_held_friction", 1, "--no-held-friction");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = Summary(r);
   EXPECT_EQ(j["missing_effect"], "held_friction") << r.out;
@@ -170,7 +169,7 @@ TEST(DiagnoseCommand, TheRealClampedBeamLacksTheHeldFriction) {
 // candidate reads time; what is named is the bias's growth with depth, which
 // the real sweeps show (docs/real-data.md).
 TEST(DiagnoseCommand, WithTheHeldFrictionInTheFileTheRealClampsLackTheDepthBias) {
-  const auto r = DiagnoseRealClampsJ1("diagnose_real_depth_bias", "");
+  const auto r = DiagnoseRealClamps("diagnose_real_depth_bias", 1, "");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = Summary(r);
   EXPECT_EQ(j["missing_effect"], "bias_torque_depth") << r.out;
@@ -182,6 +181,19 @@ TEST(DiagnoseCommand, WithTheHeldFrictionInTheFileTheRealClampsLackTheDepthBias)
   EXPECT_LT(best["heldout_rms_after_mm"].get<double>(),
             0.8 * best["heldout_rms_before_mm"].get<double>());
   EXPECT_NE(r.out.find("the parameters hold held_friction"), std::string::npos);
+}
+
+// Joint 2's real clamps show no clearance beyond the held friction (δ
+// identified 0): there is no take-up for the probe to look into, and
+// nothing is significant on its 14 depths.
+TEST(DiagnoseCommand, TheRealJoint2ClampsWithoutAClearanceAreNotProbed) {
+  const auto r = DiagnoseRealClamps("diagnose_real_j2", 2, "");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = Summary(r);
+  EXPECT_TRUE(j["missing_effect"].is_null()) << r.out;
+  for (const auto& note : j["notes"]) {
+    EXPECT_EQ(note.get<std::string>().find("take the clearance up over"), std::string::npos) << note;
+  }
 }
 
 // The shipped log hides deflection_coupling (data/README.md): the diagnosis
