@@ -88,7 +88,8 @@ BaseModel::BaseModel(const models::ModelParameters& parameters,
   for (std::size_t i = 0; i < effects.models().size(); ++i) {
     const std::string name(effects.models()[i]->Info().name);
     if (std::find(refitted.begin(), refitted.end(), name) != refitted.end()) continue;
-    file_effects_.push_back({EffectCatalogue::Global().Create(name), effects.values()[i], name});
+    file_effects_.push_back(MakeTerm(name));
+    file_effects_.back().parameters = effects.values()[i];
     file_jets_.emplace_back(effects.values()[i].begin(), effects.values()[i].end());
   }
   for (const auto& joint : parameters.joints) {
@@ -126,7 +127,6 @@ models::JointState<double> StreamRow(const io::Log& log, const io::StandardColum
 }
 
 struct RowInputs {
-  bool quasi_static = false;
   double effort_rate_window_s = 0.1;
   std::vector<Eigen::Vector2d> centred_rate;  // empty for a quasi-static log
   int ref[2] = {-1, -1};
@@ -151,7 +151,7 @@ std::vector<Sample> CollectSamples(const io::Log& log, const io::StandardColumns
   // fed every row (kept or not) through the one tracker that pliant correct
   // and the filter stream a log with: an effect is fitted here on the inputs
   // it will meet there; the effort's rate is the same line, centred.
-  EffectInputs effect_rows(in.quasi_static, kTimeGapS, in.effort_rate_window_s);
+  EffectInputs effect_rows(problem.quasi_static, kTimeGapS, in.effort_rate_window_s);
   for (std::size_t r = 0; r < log.Rows(); ++r) {
     const models::JointState<double> inputs = StreamRow(log, c, problem, r, effect_rows);
     const bool fixed = c.tip_fixed >= 0 && log.Value(r, c.tip_fixed) > 0.5;
@@ -239,7 +239,7 @@ Problem BuildProblem(const io::Log& log, const std::string& log_path, const Base
   in.ref[1] = problem.reference == "q*_ref" ? c.q2_ref : c.q2_true;
   // A quasi-static log's t is a pose index: no velocity or effort rate is read from it.
   const bool quasi_static = log.header.QuasiStatic();
-  in.quasi_static = problem.quasi_static = quasi_static;
+  problem.quasi_static = quasi_static;
   in.effort_rate_window_s = options.effort_rate_window_s;
   if (!quasi_static)
     in.centred_rate = CentredEffortRates(log, options.effort_rate_window_s, kTimeGapS);
