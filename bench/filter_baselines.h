@@ -236,12 +236,12 @@ class DenseEkf {
     }
     Jet8 x[kN], next[kN];
     for (int i = 0; i < kN; ++i) x[i] = Jet8(x_[i], i);
+    bool first_press[2];
     for (int j = 0; j < 2; ++j) {
       const int t = kS * j + 1;
       model_.sure_load_[j] = estimation::SureLoad(model_.options(), x_[t], p_(t, t));
-      if (s.tip_fixed) {
-        walls_[j].Observe(models::BacklashHold(model_.sure_load_[j], model_.width(j)));
-      }
+      first_press[j] = s.tip_fixed &&
+                       walls_[j].Observe(models::BacklashHold(model_.sure_load_[j], model_.width(j)));
       model_.inertial_torque_[j] = motion_[j].InertialTorque(model_.options());
       model_.increment_peak_[j] = motion_[j].increment_peak_rad;
     }
@@ -263,6 +263,11 @@ class DenseEkf {
     }
     p_ = (f * p_ * f.transpose()).eval();
     p_.diagonal() += q;
+    for (int j = 0; j < 2; ++j) {
+      if (first_press[j]) {
+        p_(kS * j, kS * j) += estimation::ClearanceWalls::ForgottenStartVariance(model_.BacklashCap(j));
+      }
+    }
   }
 
   void Update(const estimation::FilterSample& s) {

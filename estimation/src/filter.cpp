@@ -113,7 +113,7 @@ void ComplianceFilter::Impl::Reset() {
     for (int& r : rejections[j]) r = 0;
     motion[j] = MotorMotion{};
     bend_rate_rad_s[j] = step_hold[j] = 0.0;
-    walls[j].Seat();
+    walls[j] = ClearanceWalls{};
     restart_output[j] = true;
     // The chain's stationary share: contact is the exception.
     contact_probability[j] = contact_prior[j] =

@@ -45,7 +45,7 @@ void ComplianceFilter::Impl::Predict(int j, double dt, bool tip_fixed, bool seat
   const double hold = models::BacklashHold(sure_load, width[j]);
   step_hold[j] = hold;
   if (seated) walls[j].Seat();
-  if (tip_fixed) walls[j].Observe(hold);
+  const bool first_press = tip_fixed && walls[j].Observe(hold);
   const StateJet next = models::BacklashHysteresisStep(b, tau, clearance, width[j], relax, hold);
   // How firmly the load holds the shaft on a wall: S² = 1 beyond the width,
   // 0 at no load (BacklashProcessVariance).
@@ -120,6 +120,8 @@ void ComplianceFilter::Impl::Predict(int j, double dt, bool tip_fixed, bool seat
   q[kTip] += spread * encoder_increment * encoder_increment;
   q[kTorque] += spread * load_step * load_step;
   P.diagonal() += q;
+  // The held tip forgets where the shaft started (ClearanceWalls says why).
+  if (first_press) P(kTip, kTip) += ClearanceWalls::ForgottenStartVariance(prior_variance);
 
   t.predicted_mean = s.mean;
   t.f_torque_torque = 1.0;
