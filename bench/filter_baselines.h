@@ -197,6 +197,7 @@ class DenseEkf {
           x_.template segment<kS>(kS * j) << s.encoder_rad[j], 0.0, 0.0, 1.0, 0.0, 0.0;
         }
       }
+      for (int j = 0; j < 2 && s.tip_fixed; ++j) walls_[j].Seat();  // a log that starts held
       initialised_ = true;
       start_time_ = last_time_ = s.time_s;
       last_encoder_ = s.encoder_rad;

@@ -163,6 +163,7 @@ void ComplianceFilter::Impl::Initialise(const FilterSample& sample, double depth
     joint[j].mean << tip, tau, b, 1.0, 0.0, 0.0;
     joint[j].covariance = PriorCovariance(options, delta[j], uncertainty[j]);
     transition[j] = FilterTransition{};
+    if (sample.tip_fixed) walls[j].Seat();  // a log that starts held: a hold the hint began
   }
   // The file's deflection effects at those loads (their inputs: this row's).
   const ExtraDeflection extra = Deflection();

@@ -89,5 +89,20 @@ TEST(ComplianceFilter, SeatingATipAtRestMovesItsEstimateByCountsNotTens) {
   EXPECT_GT(tied, 2.5 * bounded);
 }
 
+// The walls' events: a hold the hint seated forgets its shaft's start at its
+// first press, once; a contact no seat began (no hint) never does.
+TEST(ClearanceWalls, OnlyASeatedHoldForgetsItsStartAndOnlyAtItsFirstPress) {
+  ClearanceWalls walls;
+  EXPECT_FALSE(walls.Observe(1.0));  // pressed, but never seated
+  EXPECT_TRUE(walls.TeachClearance());
+  walls.Seat();
+  EXPECT_FALSE(walls.TeachClearance());
+  EXPECT_TRUE(walls.Observe(0.5 * (1.0 + ClearanceWalls::kPressedHold)));  // the first press
+  EXPECT_FALSE(walls.Observe(1.0));  // the second press of the same hold
+  walls.Seat();
+  EXPECT_FALSE(walls.Observe(0.9 * ClearanceWalls::kPressedHold));
+  EXPECT_TRUE(walls.Observe(ClearanceWalls::kPressedHold));
+}
+
 }  // namespace
 }  // namespace pliant::estimation
