@@ -119,6 +119,7 @@ Study ParseStudy(const std::string& text, const std::string& file) {
   r.Object(doc, "",
            {{"format", true}, {"version", true}, {"description", true}, {"scenario", true},
             {"scenario_set", false}, {"trials", true}, {"seed", true}, {"identify", false},
+            {"identify_method", false},
             {"calibration", false}, {"instrument", false}, {"noise", false},
             {"contact", false}, {"filter", false}});
   if (r.String(doc["format"], "/format") != kFormat) {
@@ -137,6 +138,14 @@ Study ParseStudy(const std::string& text, const std::string& file) {
              "write true (identify on a simulated calibration) or false (nominal parameters)");
     }
     s.identify = doc["identify"].get<bool>();
+  }
+  if (doc.contains("identify_method")) {
+    const std::string method = r.String(doc["identify_method"], "/identify_method");
+    if (method != "smoother" && method != "paper") {
+      r.Fail("/identify_method", "identify_method must be \"smoother\" or \"paper\", found \"" + method + "\"",
+             "write \"smoother\" (what pliant identify runs on timed logs) or \"paper\" (the paper's procedure)");
+    }
+    s.identify_method = method == "paper" ? Study::IdentifyMethod::kPaper : Study::IdentifyMethod::kSmoother;
   }
   if (doc.contains("filter")) {  // the estimator's own options, not the plant's
     const auto& filter = doc["filter"];
@@ -278,6 +287,8 @@ Study ParseStudy(const std::string& text, const std::string& file) {
     }
   }
   doc.erase("trials");  // more trials extend a study; they do not make another one
+  // The method as read, not as written: a default that changes makes another study.
+  if (s.identify) doc["identify_method"] = s.identify_method == Study::IdentifyMethod::kPaper ? "paper" : "smoother";
   s.fingerprint = Fnv1a(calibration_texts, Fnv1a(scenario_text, Fnv1a(doc.dump() + "\n")));
   return s;
 }

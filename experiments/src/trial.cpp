@@ -16,6 +16,7 @@
 #include "pliant/estimation/filter_log.h"
 #include "pliant/estimation/filter_smoother.h"
 #include "pliant/estimation/identification.h"
+#include "pliant/estimation/joint_smoother.h"
 #include "pliant/estimation/tip_error_statistics.h"
 #include "pliant/experiments/montecarlo_trial.h"
 #include "pliant/experiments/simulator.h"
@@ -37,7 +38,10 @@ models::ModelParameters Identify(const Study& study, const Truth& truth, const T
     estimation::AppendSamples(result.log, calibration.name, {}, &data);
   }
   auto prior = NominalParameters(study, draw.values[kDepthM]);
-  return estimation::RunPaperProcedure(data, prior).parameters;
+  if (study.identify_method == Study::IdentifyMethod::kPaper) {
+    return estimation::RunPaperProcedure(data, prior).parameters;
+  }
+  return estimation::RunJointSmoother(data, prior, estimation::JointSmootherOptions{}).parameters;
 }
 
 // How far a drawn quantity lies from the value the filter is given, as a

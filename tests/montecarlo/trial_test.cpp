@@ -211,7 +211,7 @@ TEST(RunTrial, IdentifyingTheInstrumentRecoversItsCompliance) {
   // nominal parameters and with those the paper's procedure identifies on a
   // simulated bias sweep and clamped beam of that very shaft.
   const std::string soft = R"({"compliance_scale": 1.4})";
-  const std::string calibration = R"(, "identify": true, "calibration": [
+  const std::string calibration = R"(, "identify": true, "identify_method": "paper", "calibration": [
     {"scenario": ")" PLIANT_SOURCE_DIR R"(/experiments/scenarios/bias_sweep.json",
      "set": ["hidden_effects={}", "experiment.depths_m=[0.15]", "experiment.step_deg=10",
              "experiment.move_s=0.2", "experiment.settle_s=0.1", "log.mode=hold_means"]},
@@ -223,6 +223,13 @@ TEST(RunTrial, IdentifyingTheInstrumentRecoversItsCompliance) {
   EXPECT_EQ(nominal.tip_error_mm[kUncorrected], identified.tip_error_mm[kUncorrected]);  // same push
   EXPECT_LT(identified.tip_error_mm[kEquation2], 0.5 * nominal.tip_error_mm[kEquation2]);
   EXPECT_LT(identified.tip_error_mm[kDeadZone], 0.5 * nominal.tip_error_mm[kDeadZone]);
+  // A method the study does not know is bad input at its key.
+  try {
+    ShortStudy(soft, R"(, "identify": true, "identify_method": "ceres", "calibration": [])");
+    ADD_FAILURE() << "an unknown identify_method was read";
+  } catch (const io::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("identify_method must be"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

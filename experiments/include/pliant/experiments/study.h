@@ -73,9 +73,14 @@ struct Study {
   /// |effort| reaches the drawn peak torque; direction and speed unused).
   Scenario scenario;
   Distribution quantities[kSampledQuantities];
-  /// Identify each trial's parameters (the paper's procedure) on a simulated
-  /// calibration of its own instrument first; else use the nominal ones.
+  /// Identify each trial's parameters on a simulated calibration of its own
+  /// instrument first; else use the nominal ones.
   bool identify = false;
+  /// How: the joint smoother (`pliant identify`'s method on timed logs), or
+  /// the paper's procedure, whose σ are its lines' scatter and cover the
+  /// truth on none of its numbers (docs/validation.md section 2).
+  enum class IdentifyMethod { kSmoother, kPaper };
+  IdentifyMethod identify_method = IdentifyMethod::kSmoother;
   /// The calibration's experiments (e.g. a short bias sweep and a clamped
   /// beam), each simulated with the trial's truth; their files' texts enter
   /// the fingerprint.
