@@ -108,6 +108,11 @@ std::string ReadText(const std::string& path, const char* what, const char* fix)
   return text.str();
 }
 
+// The study file's word for each identification method.
+const char* IdentifyMethodName(Study::IdentifyMethod method) {
+  return method == Study::IdentifyMethod::kPaper ? "paper" : "smoother";
+}
+
 }  // namespace
 
 Study ParseStudy(const std::string& text, const std::string& file) {
@@ -141,11 +146,14 @@ Study ParseStudy(const std::string& text, const std::string& file) {
   }
   if (doc.contains("identify_method")) {
     const std::string method = r.String(doc["identify_method"], "/identify_method");
-    if (method != "smoother" && method != "paper") {
+    if (method != IdentifyMethodName(Study::IdentifyMethod::kSmoother) &&
+        method != IdentifyMethodName(Study::IdentifyMethod::kPaper)) {
       r.Fail("/identify_method", "identify_method must be \"smoother\" or \"paper\", found \"" + method + "\"",
              "write \"smoother\" (what pliant identify runs on timed logs) or \"paper\" (the paper's procedure)");
     }
-    s.identify_method = method == "paper" ? Study::IdentifyMethod::kPaper : Study::IdentifyMethod::kSmoother;
+    s.identify_method = method == IdentifyMethodName(Study::IdentifyMethod::kPaper)
+                            ? Study::IdentifyMethod::kPaper
+                            : Study::IdentifyMethod::kSmoother;
   }
   if (doc.contains("filter")) {  // the estimator's own options, not the plant's
     const auto& filter = doc["filter"];
@@ -288,7 +296,7 @@ Study ParseStudy(const std::string& text, const std::string& file) {
   }
   doc.erase("trials");  // more trials extend a study; they do not make another one
   // The method as read, not as written: a default that changes makes another study.
-  if (s.identify) doc["identify_method"] = s.identify_method == Study::IdentifyMethod::kPaper ? "paper" : "smoother";
+  if (s.identify) doc["identify_method"] = IdentifyMethodName(s.identify_method);
   s.fingerprint = Fnv1a(calibration_texts, Fnv1a(scenario_text, Fnv1a(doc.dump() + "\n")));
   return s;
 }
