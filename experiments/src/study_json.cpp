@@ -159,7 +159,7 @@ Study ParseStudy(const std::string& text, const std::string& file) {
     const auto& filter = doc["filter"];
     r.Object(filter, "/filter",
              {{"deflection_model_error", false}, {"load_follows_motor", false}, {"infer_contact", false},
-              {"inertial_torque_error", false}, {"unloaded_start_s", false}});
+              {"tip_fixed_hint", false}, {"inertial_torque_error", false}, {"unloaded_start_s", false}});
     if (filter.contains("deflection_model_error")) {
       s.deflection_model_error = r.Number(filter["deflection_model_error"],
                                           "/filter/deflection_model_error", "(share of K·τ)", 0.0, 1.0);
@@ -177,6 +177,9 @@ Study ParseStudy(const std::string& text, const std::string& file) {
     flag("infer_contact",
          "write true (contact is the exception where tip_fixed is 0) or false (all effort is load)",
          &s.infer_contact);
+    flag("tip_fixed_hint",
+         "write true (the filter reads the log's tip_fixed) or false (it is not told: online)",
+         &s.tip_fixed_hint);
     if (filter.contains("inertial_torque_error")) {
       s.inertial_torque_error = r.Number(filter["inertial_torque_error"],
                                          "/filter/inertial_torque_error", "(share of J·θ̈)", 0.0, 10.0);

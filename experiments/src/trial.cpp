@@ -205,9 +205,11 @@ TrialResult RunTrial(const Study& study, int trial) {
   };
   for (std::size_t r = 0; r < rows; ++r) {
     const double* v = &log.values[r * cols];
-    const auto sample = estimation::SampleFromRow(c, v, options.fuse_log_reference);
+    auto sample = estimation::SampleFromRow(c, v, options.fuse_log_reference);
+    const bool tip_held = sample.tip_fixed;  // the truth: scored on held rows either way
+    sample.tip_fixed = tip_held && study.tip_fixed_hint;
     const auto filtered = smoother.Add(sample);
-    if (!sample.tip_fixed) continue;
+    if (!tip_held) continue;
     const Eigen::Vector3d q(v[c.q1], v[c.q2], v[c.q3]);
     const Eigen::Vector2d truth(v[c.q1_true], v[c.q2_true]), effort(v[c.tau1], v[c.tau2]);
     const auto with_angles = [&](const Eigen::Vector2d& a) { return Eigen::Vector3d(a[0], a[1], q[2]); };

@@ -156,6 +156,10 @@ TEST(Study, SetsTheHeldLoadModelAndTheInertialError) {
   const Study tared = ParseStudy(StudyText(R"(, "filter": {"unloaded_start_s": 0.15})"), "a.json");
   EXPECT_EQ(tared.unloaded_start_s, 0.15);
   EXPECT_NE(plain.fingerprint, tared.fingerprint);
+  EXPECT_TRUE(plain.tip_fixed_hint);
+  const Study online = ParseStudy(StudyText(R"(, "filter": {"tip_fixed_hint": false})"), "a.json");
+  EXPECT_FALSE(online.tip_fixed_hint);
+  EXPECT_NE(plain.fingerprint, online.fingerprint);
 }
 
 // Each bad study names its file, line and key.
@@ -201,7 +205,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadStudy{",\n \"noise\": {\"effort_sd_nm\": [0.01, 0.02]}", 5, "noise.effort_sd_nm"},
         BadStudy{",\n \"filter\": {\"inertial_torque_error\": -0.3}", 5,
                  "filter.inertial_torque_error"},
-        BadStudy{",\n \"filter\": {\"unloaded_start_s\": -1}", 5, "filter.unloaded_start_s"}),
+        BadStudy{",\n \"filter\": {\"unloaded_start_s\": -1}", 5, "filter.unloaded_start_s"},
+        BadStudy{",\n \"filter\": {\"tip_fixed_hint\": \"no\"}", 5, "tip_fixed_hint"}),
     [](const ::testing::TestParamInfo<BadStudy>& info) {
       std::string name;  // the key the message must name, as a test name
       for (char c : info.param.says) name += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';

@@ -95,6 +95,10 @@ struct Study {
   /// FilterOptions::infer_contact (the filter's default, true, unless the
   /// study's "filter" sets it).
   bool infer_contact = true;
+  /// false: the filter and smoother are not told which rows hold the tip (the
+  /// log's tip_fixed column stays the truth the trial scores against), as
+  /// online in a control loop, where nobody says the tip is held.
+  bool tip_fixed_hint = true;
   double inertial_torque_error = std::numeric_limits<double>::quiet_NaN();
   /// FilterOptions::unloaded_start_s: the seconds at each simulated log's start
   /// with the tip free, the arm still and no load (0: none).
