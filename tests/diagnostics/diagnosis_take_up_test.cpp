@@ -126,11 +126,6 @@ double Cubic(const models::JointParameters& joint, double tau) {
 
 // Three depths, eight directions: 24 pushes of the held tip to 1 N·m.
 TEST(DiagnoseTakeUp, AStiffeningAbsorbedAsAWideTakeUpIsNamed) {
-#ifdef PLIANT_SANITIZE_BUILD
-  // 38 s in Release, 1081 s under ASan on a busy 2-core machine: too near ctest's
-  // 1500 s limit. The two below drive the same probe and run there.
-  GTEST_SKIP() << "skipped in the sanitizer build: the 24-push log's probe is too slow there";
-#endif
   const auto scenario = ShortDivot("{}", {"experiment.depths_m=[0.10,0.15,0.20]",
                                           "experiment.directions_deg=[0,45,90,135,180,225,270,315]"});
   const models::ModelParameters truth = ModelOf(scenario);
