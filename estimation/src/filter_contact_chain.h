@@ -36,4 +36,11 @@ struct ContactPrior {
 ContactPrior MixContact(const FilterOptions& o, const ContactRates& rates, double probability,
                         double dt);
 
+// log density of a settled free arm's effort residual, N(0, variance).
+double FreeLogDensity(double residual_nm, double variance_nm2);
+// log density of a contact's residual |r|² over `joints` (1 or 2) joints:
+// a load of uniform direction and log-uniform scale s, s² in [s_lo2, s_hi2]
+// (filter_contact_evidence.cpp).
+double ContactLogDensity(double radius2_nm2, int joints, double s_lo2, double s_hi2);
+
 }  // namespace pliant::estimation::filter_internal

@@ -4,6 +4,7 @@
 // docs/decisions/contact-prior.md and contact-pair-windows.md say why.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "filter_impl.h"
 
@@ -51,6 +52,7 @@ void ComplianceFilter::Impl::ShareContact() {
     return;
   }
   LearnHold();
+  if (!options.quasi_static) log_odds = LevelEvidence(log_odds);
   const double prior = contact_prior[joint_scored];
   const double prior_log_odds = std::log(prior) - std::log1p(-prior);  // ±inf at 0 and 1
   const double shared =
@@ -59,6 +61,37 @@ void ComplianceFilter::Impl::ShareContact() {
     if (pending[j].update && pending[j].mixture) contact_probability[j] = shared;
   }
   contact_rates.Learn(options, shared, chain_step_s);
+}
+
+// A continuous log's evidence for contact on this row: each joint's pair
+// window, and, the arm settled, both joints' effort levels together: the
+// free arm's residual (the table's error and noise) against a contact's load
+// of any direction and scale (ContactLogDensity), weighted as one look per
+// pair window. While a joint moves as a free arm, its unmodelled torque is
+// heavy-tailed at every scale and each joint's slab (per_joint, the sum of
+// their log-likelihood ratios) is kept: a light load is not told from it
+// (docs/decisions/contact-scale-free-load.md).
+double ComplianceFilter::Impl::LevelEvidence(double per_joint) const {
+  double held = 0.0, free = 0.0, radius2 = 0.0, variance = 0.0, weight = 1.0;
+  int joints = 0;
+  for (int j = 0; j < 2; ++j) {
+    const PendingEffort& e = pending[j];
+    if (!e.update || !e.mixture) continue;
+    if (e.moving > 0.5) return per_joint;
+    const double v = joint[j].covariance(kOffset, kOffset) + e.variance;
+    held += e.held_evidence;
+    free += filter_internal::FreeLogDensity(e.residual, v);
+    radius2 += e.residual * e.residual;
+    variance += v;
+    weight = std::min(weight, e.level_weight);
+    ++joints;
+  }
+  variance /= joints;
+  const double low = options.unmodelled_effort_sd_nm, high = options.effort_limit_nm;
+  const double contact = filter_internal::ContactLogDensity(radius2, joints, low * low + variance,
+                                                            high * high + variance);
+  if (!(std::isfinite(contact) && std::isfinite(free))) return held;
+  return std::clamp(weight * (contact - free) + held, -700.0, 700.0);
 }
 
 // A continuous log's pair windows, closed on this row, on whether a contact

@@ -9,7 +9,6 @@
 #include <cstdint>
 #include <limits>
 #include <vector>
-
 #include <ceres/jet.h>
 
 #include "pliant/estimation/extra_effects.h"
@@ -99,7 +98,7 @@ double ContactAfterPosePair(const FilterOptions& o, const ContactRates& rates, d
 struct PendingEffort {
   bool update = false, mixture = false;
   double residual = 0.0, variance = 0.0, moving = 0.0, rest = 0.0, arm_torque = 0.0;
-  double log_likelihood_ratio = 0.0;
+  double log_likelihood_ratio = 0.0, held_evidence = 0.0, level_weight = 0.0;
   PoseTransitions transitions;  // a quasi-static pose pair, or a continuous log's closed window
 };
 // A quasi-static log's last pose, per joint, for QuasiStaticTransitions; in a
@@ -226,6 +225,7 @@ struct ComplianceFilter::Impl {
     return options.infer_contact && !sample.tip_fixed &&
            !InUnloadedStart(options, sample.time_s - start_time_s);
   }
+  double LevelEvidence(double per_joint) const;
   void LearnHold();
   double PairTravel(int j);
   void FinishEffort(const FilterSample& sample, int j, bool unloaded, StepTally* tally);

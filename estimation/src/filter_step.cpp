@@ -262,7 +262,7 @@ void ComplianceFilter::Impl::UpdateEffort(const FilterSample& sample, int j, boo
   const FilterJointState& s = joint[j];
   const double residual =
       effort - tau0 - inertial - arm_torque - extra_internal_torque_nm[j] - s.mean[kOffset];
-  double log_likelihood_ratio = 0.0;
+  double log_likelihood_ratio = 0.0, held_evidence = 0.0, level_weight = 0.0;
   filter_internal::PoseTransitions transitions;
   if (mixture) {
     // The evidence for contact is a residual beyond what the unmodelled
@@ -278,22 +278,23 @@ void ComplianceFilter::Impl::UpdateEffort(const FilterSample& sample, int j, boo
     const double dof = moving > 0.5 ? options.moving_effort_dof
                                     : std::numeric_limits<double>::infinity();
     // The log-likelihood ratio of contact; the posterior is shared by both
-    // joints (ShareContact): a contact is the tip's, not one joint's.
+    // joints (ShareContact): a contact is the tip's, not one joint's. (A
+    // continuous log scores both joints' levels at once there, LevelEvidence.)
     transitions = PoseChangeEvidence(sample, j, residual, free_variance);
-    const double held_evidence =
+    held_evidence =
         options.quasi_static ? (transitions.valid ? transitions.held - transitions.free : 0.0)
                              : filter_internal::HeldWindowEvidence(transitions);
     // A load's level, like the table's error, holds over many rows: the rows
     // of a pair window (as long as the last one closed) are one look at it.
     const double look_s =
         std::max(filter_internal::kPairWindowS, pair_window[j].closed_duration_s);
-    const double level_weight = options.quasi_static ? 1.0 : std::min(1.0, step_dt / look_s);
+    level_weight = options.quasi_static ? 1.0 : std::min(1.0, step_dt / look_s);
     log_likelihood_ratio =
         ContactLogLikelihoodRatio(residual, sd_c * sd_c + free_variance, residual, free_variance,
                                   dof, held_evidence, level_weight);
   }
   pending[j] = PendingEffort{true, mixture, residual, variance, moving, rest, arm_torque,
-                             log_likelihood_ratio, transitions};
+                             log_likelihood_ratio, held_evidence, level_weight, transitions};
 }
 
 // The effort's update once the contact is known: what the no-contact rows

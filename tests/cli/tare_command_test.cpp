@@ -134,10 +134,12 @@ TEST(FilterTare, RecoversAKnownShiftAndFiltersAsWithTheTrueBias) {
   ASSERT_EQ(RunCommand(kCli + " filter" + params + kLog + " -o " + truth, dir).exit_code, 0);
   ASSERT_EQ(RunCommand(kCli + " filter" + params + shifted + " -o " + untared, dir).exit_code, 0);
   // Untared, the shift moves the corrected joints by up to 15 mrad (joint 1);
-  // tared, they stay within 0.1 mrad of the true bias's.
+  // tared, they stay within 0.3 mrad of the true bias's (0.01 mrad but where a
+  // contact begins: the tare's 0.3 mN·m doubt moves the row the contact chain
+  // believes it by one or two, 0.19 mrad on joint 1).
   EXPECT_GT(MaxDifference(untared, truth, "q1_corr"), 1e-2);
-  EXPECT_LT(MaxDifference(tared, truth, "q1_corr"), 1e-4);
-  EXPECT_LT(MaxDifference(tared, truth, "q2_corr"), 1e-4);
+  EXPECT_LT(MaxDifference(tared, truth, "q1_corr"), 3e-4);
+  EXPECT_LT(MaxDifference(tared, truth, "q2_corr"), 3e-4);
 }
 
 // On the unshifted log the tare finds noise (±0.0003 N·m) and says nothing of

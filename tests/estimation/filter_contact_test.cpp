@@ -118,7 +118,8 @@ struct PushOutcome {
   Eigen::Vector2d equation2_rms_rad{0, 0};  // and equation (2)'s
 };
 
-PushOutcome Push(unsigned seed, double rate_hz = kRate, double ramp_s = 1.0) {
+PushOutcome Push(unsigned seed, double rate_hz = kRate, double ramp_s = 1.0, double peak_nm = 0.8,
+                 double angle_rad = 0.3) {
   const auto p = models::testing::PaperParameters();
   const FilterOptions o;
   std::mt19937_64 rng(seed);
@@ -126,7 +127,8 @@ PushOutcome Push(unsigned seed, double rate_hz = kRate, double ramp_s = 1.0) {
   ComplianceFilter filter(p);
   const ComplianceCorrector equation2(p, CorrectionModel::kPaper);
   const double depth = 0.15;
-  const Eigen::Vector2d tip(0.1, -0.2), push(0.8 * std::cos(0.3), 0.8 * std::sin(0.3));
+  const Eigen::Vector2d tip(0.1, -0.2),
+      push(peak_nm * std::cos(angle_rad), peak_nm * std::sin(angle_rad));
   Eigen::Vector2d backlash = Eigen::Vector2d::Zero();
   PushOutcome out;
   int loaded = 0;
@@ -178,6 +180,22 @@ TEST(FilterContact, APushIsRecognisedWhileItsLoadGrowsAndCorrectedOnBothJoints) 
     EXPECT_LT(r.recognised_s, 1.3) << "seed " << seed;
     EXPECT_LT(r.hold_worst_rad[0], 2.5e-3) << "seed " << seed;
     EXPECT_LT(r.hold_worst_rad[1], 2.5e-3) << "seed " << seed;
+  }
+}
+
+// A light push along joint 1 alone (0.35 N·m, the lightest of the family
+// studies): joint 2's residual stays at its noise, and the contact's evidence
+// must not charge it for that (ContactLogDensity: a load of any direction;
+// docs/decisions/contact-scale-free-load.md). Measured, seeds 1-3:
+// recognised at 1.27-1.45 s, the hold within 1.15-1.19 mrad (with each
+// joint's slab N(0, σ_c²): 1.28-1.45 s, 0.90-1.06 mrad; here the paper's
+// instrument and default noise, where the still joint's charge did not
+// decide; on the family study's light pushes it did).
+TEST(FilterContact, ALightPushAlongOneJointIsRecognised) {
+  for (unsigned seed = 1; seed <= 3; ++seed) {
+    const PushOutcome r = Push(seed, kRate, 1.0, 0.35, 0.0);
+    EXPECT_LT(r.recognised_s, 2.5) << "seed " << seed;
+    EXPECT_LT(r.hold_worst_rad[0], 1.5e-3) << "seed " << seed;
   }
 }
 
