@@ -1,6 +1,6 @@
 // The contact chain's evidence from the effort's level (filter_contact_step.cpp,
 // ShareContact): both joints' residuals under contact and under none.
-// docs/decisions/free-level.md says why the load's prior is scale-free.
+// docs/decisions/contact-scale-free-load.md says why the load's prior is scale-free.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -15,7 +15,8 @@ double FreeLogDensity(double residual_nm, double variance_nm2) {
 }
 
 // The load of a contact has a direction (uniform) and a magnitude whose
-// scale nobody knows between the effort's noise and its limit: an isotropic
+// scale nobody knows between the table's error at rest (σ_rest, a load it
+// hides) and the effort's limit (LevelEvidence passes both): an isotropic
 // Gaussian of scale s, log-uniform on [s_lo, s_hi] (the scale-invariant
 // prior), s² including the free residual's variance. Integrated over s in
 // closed form, with ρ² = |r|² and t = ρ²/(2s²):

@@ -4,7 +4,6 @@
 // docs/decisions/contact-prior.md and contact-pair-windows.md say why.
 #include <algorithm>
 #include <cmath>
-#include <limits>
 
 #include "filter_impl.h"
 
