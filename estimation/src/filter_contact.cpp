@@ -15,12 +15,6 @@
 namespace pliant::estimation::filter_internal {
 namespace {
 
-// log N(x; 0, v).
-double LogNormal(double x, double v) {
-  constexpr double kLogTwoPi = 1.8378770664093453;
-  return -0.5 * (x * x / v + std::log(v) + kLogTwoPi);
-}
-
 // log(e^a + e^b), −inf when both are.
 double LogSumExp(double a, double b) {
   const double top = std::max(a, b);

@@ -36,8 +36,9 @@ struct ContactPrior {
 ContactPrior MixContact(const FilterOptions& o, const ContactRates& rates, double probability,
                         double dt);
 
-// log density of a settled free arm's effort residual, N(0, variance).
-double FreeLogDensity(double residual_nm, double variance_nm2);
+// log N(x; 0, v): the chain's Gaussian densities (a settled free arm's
+// residual, the pose pairs' laws).
+double LogNormal(double x, double v);
 // log density of a contact's residual |r|² over `joints` (1 or 2) joints:
 // a load of uniform direction and log-uniform scale s, s² in [s_lo2, s_hi2]
 // (filter_contact_evidence.cpp).

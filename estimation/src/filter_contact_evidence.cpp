@@ -9,9 +9,9 @@
 
 namespace pliant::estimation::filter_internal {
 
-double FreeLogDensity(double residual_nm, double variance_nm2) {
+double LogNormal(double x, double v) {
   constexpr double kLogTwoPi = 1.8378770664093453;
-  return -0.5 * (residual_nm * residual_nm / variance_nm2 + std::log(variance_nm2) + kLogTwoPi);
+  return -0.5 * (x * x / v + std::log(v) + kLogTwoPi);
 }
 
 // The load of a contact has a direction (uniform) and a magnitude whose

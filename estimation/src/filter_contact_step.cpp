@@ -77,11 +77,10 @@ double ComplianceFilter::Impl::LevelEvidence(double per_joint) const {
     const PendingEffort& e = pending[j];
     if (!e.update || !e.mixture) continue;
     if (e.moving > 0.5) return per_joint;
-    const double v = joint[j].covariance(kOffset, kOffset) + e.variance;
     held += e.held_evidence;
-    free += filter_internal::FreeLogDensity(e.residual, v);
+    free += filter_internal::LogNormal(e.residual, e.free_variance);
     radius2 += e.residual * e.residual;
-    variance += v;
+    variance += e.free_variance;
     weight = std::min(weight, e.level_weight);
     ++joints;
   }

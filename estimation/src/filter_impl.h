@@ -98,7 +98,7 @@ double ContactAfterPosePair(const FilterOptions& o, const ContactRates& rates, d
 struct PendingEffort {
   bool update = false, mixture = false;
   double residual = 0.0, variance = 0.0, moving = 0.0, rest = 0.0, arm_torque = 0.0;
-  double log_likelihood_ratio = 0.0, held_evidence = 0.0, level_weight = 0.0;
+  double log_likelihood_ratio = 0.0, held_evidence = 0.0, level_weight = 0.0, free_variance = 0.0;
   PoseTransitions transitions;  // a quasi-static pose pair, or a continuous log's closed window
 };
 // A quasi-static log's last pose, per joint, for QuasiStaticTransitions; in a

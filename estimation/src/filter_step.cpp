@@ -262,7 +262,7 @@ void ComplianceFilter::Impl::UpdateEffort(const FilterSample& sample, int j, boo
   const FilterJointState& s = joint[j];
   const double residual =
       effort - tau0 - inertial - arm_torque - extra_internal_torque_nm[j] - s.mean[kOffset];
-  double log_likelihood_ratio = 0.0, held_evidence = 0.0, level_weight = 0.0;
+  double log_likelihood_ratio = 0.0, held_evidence = 0.0, level_weight = 0.0, free_variance = 0.0;
   filter_internal::PoseTransitions transitions;
   if (mixture) {
     // The evidence for contact is a residual beyond what the unmodelled
@@ -271,7 +271,7 @@ void ComplianceFilter::Impl::UpdateEffort(const FilterSample& sample, int j, boo
     // (Scored against the slab's tracked load, a smooth internal torque looked
     // like a contact that is followed well: bag rows with p ≈ 0.9 at
     // residuals below σ_u.)
-    const double free_variance = s.covariance(kOffset, kOffset) + variance;
+    free_variance = s.covariance(kOffset, kOffset) + variance;
     const double sd_c = options.contact_load_sd_nm;
     // A moving arm's unmodelled torque is heavy-tailed (a spike of inertia or
     // stiction is not a contact); a settled arm's is the table's error and noise.
@@ -294,7 +294,8 @@ void ComplianceFilter::Impl::UpdateEffort(const FilterSample& sample, int j, boo
                                   dof, held_evidence, level_weight);
   }
   pending[j] = PendingEffort{true, mixture, residual, variance, moving, rest, arm_torque,
-                             log_likelihood_ratio, held_evidence, level_weight, transitions};
+                             log_likelihood_ratio, held_evidence, level_weight, free_variance,
+                             transitions};
 }
 
 // The effort's update once the contact is known: what the no-contact rows

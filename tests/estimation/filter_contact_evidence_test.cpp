@@ -42,10 +42,10 @@ TEST(ContactLogDensity, IsTheScaleMixtureInClosedForm) {
 TEST(ContactLogDensity, ALoadAlongOneJointIsEvidenceAndNoneIsNot) {
   const double s_lo2 = 0.0025;
   const double v = 0.09 * 0.09;
-  const double free = FreeLogDensity(0.31, v) + FreeLogDensity(0.0, v);
+  const double free = LogNormal(0.31, v) + LogNormal(0.0, v);
   const double contact = ContactLogDensity(0.31 * 0.31, 2, s_lo2 + v, 3.3 * 3.3 + v);
   EXPECT_NEAR(contact - free, 2.2, 0.1);
-  EXPECT_LT(ContactLogDensity(0.0, 2, s_lo2 + v, 3.3 * 3.3 + v) - 2.0 * FreeLogDensity(0.0, v), -1.0);
+  EXPECT_LT(ContactLogDensity(0.0, 2, s_lo2 + v, 3.3 * 3.3 + v) - 2.0 * LogNormal(0.0, v), -1.0);
 }
 
 }  // namespace
