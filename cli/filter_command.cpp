@@ -206,6 +206,11 @@ Command AddFilterCommand(CLI::App& app) {
       "--fixed-contact-rates", [&f](std::int64_t) { f.learn_contact_rates = false; },
       "Keep the contact chain's rates at their priors (a contact every 10 s of motion, lasting "
       "2 s) instead of learning them from the log (docs/decisions/contact-rates.md)");
+  sub->add_flag_function(
+      "--no-free-level", [&f](std::int64_t) { f.free_level = false; },
+      "Without tip_fixed, do not learn the free arm's effort where it stands still (the bias "
+      "table's error at that pose): judge a load against the table's whole error σ_rest "
+      "instead (docs/decisions/contact-free-level.md)");
   sub->add_option("--inertial-error", f.inertial_torque_error,
                   "κ: the share of the fitted inertial torque J·θ̈ the fit may misread, as effort "
                   "variance (κ·J·θ̈)² with the tip held (0: exact; only with --motor-inertia)")

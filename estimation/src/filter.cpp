@@ -128,6 +128,7 @@ void ComplianceFilter::Impl::Reset() {
     free_motion[j] = filter_internal::FreeArmMotion{};
     unmodelled[j].variance = options.moving_effort_sd_nm * options.moving_effort_sd_nm;
     internal_torque[j].Start(options);
+    pending[j] = filter_internal::PendingEffort{};  // (its pose and stillness feed the free level)
   }
   std::fill(window_nis.begin(), window_nis.end(), 0.0);
   std::fill(window_dof.begin(), window_dof.end(), 0);

@@ -97,8 +97,8 @@ double ContactAfterPosePair(const FilterOptions& o, const ContactRates& rates, d
 // An effort's update waiting for the shared contact probability (ShareContact).
 struct PendingEffort {
   bool update = false, mixture = false;
-  double residual = 0.0, variance = 0.0, moving = 0.0, rest = 0.0, arm_torque = 0.0;
-  double log_likelihood_ratio = 0.0, held_evidence = 0.0, level_weight = 0.0, free_variance = 0.0;
+  double residual = 0.0, variance = 0.0, moving = 0.0, rest = 0.0, arm_torque = 0.0, still = 0.0;
+  double pose_rad = 0.0, log_likelihood_ratio = 0.0, held_evidence = 0.0, level_weight = 0.0, free_variance = 0.0;
   PoseTransitions transitions;  // a quasi-static pose pair, or a continuous log's closed window
 };
 // A quasi-static log's last pose, per joint, for QuasiStaticTransitions; in a
@@ -195,13 +195,11 @@ struct ComplianceFilter::Impl {
   using StateJet = filter_internal::StateJet;
   using InstrumentUncertainty = filter_internal::InstrumentUncertainty;
   using SampleClock = filter_internal::SampleClock;
-
   Impl(const models::ModelParameters& p, const FilterOptions& o);
 
   FilterEstimate Step(const FilterSample& sample);
   bool StepHeldSample();
   void Reset();
-
   void AdvanceMotion(const FilterSample& sample);
   void StepState(const FilterSample& sample);
   void AdvanceState(const FilterSample& sample, double previous_depth, StepTally* tally);
@@ -226,6 +224,8 @@ struct ComplianceFilter::Impl {
            !InUnloadedStart(options, sample.time_s - start_time_s);
   }
   double LevelEvidence(double per_joint) const;
+  Eigen::Vector3d LevelPose(const FilterSample& sample) const;  // the free level's pose
+  double ArmStill() const;
   void LearnHold();
   double PairTravel(int j);
   void FinishEffort(const FilterSample& sample, int j, bool unloaded, StepTally* tally);

@@ -22,6 +22,19 @@ void InternalTorque::Start(const FilterOptions& o) {
   covariance = sd.cwiseProduct(sd).asDiagonal();
   open = Batch{};
   oldest = queued = 0;
+  rest_variance_nm2 = o.unmodelled_effort_sd_nm * o.unmodelled_effort_sd_nm;
+  level.Start(o, LevelEquilibrium());
+}
+
+void InternalTorque::AddLevelRow(double still, double residual_without_level,
+                                 const Eigen::Vector3d& pose) {
+  if (!level.on || !(still > 1e-3) || !std::isfinite(residual_without_level) ||
+      !pose.allFinite()) {
+    return;
+  }
+  open.level_weight += still;
+  open.level_sum += still * residual_without_level;
+  open.level_pose_sum += still * pose;
 }
 
 Eigen::Matrix2d ArmFriction(double velocity_scale_rad_s, const Eigen::Vector2d& velocity_rad_s) {
@@ -66,6 +79,11 @@ void InternalTorque::Learn(double weight, double residual, double variance,
     }
     due.contact = std::max(due.contact, open.contact);
     Teach(due, memory_s);
+    // The level's lesson waits as the torque's does: Learn says why.
+    if (due.level_weight >= 1.0) {
+      level.Teach(due.level_sum / due.level_weight, due.level_pose_sum / due.level_weight,
+                  1.0 - due.contact, LevelEquilibrium());
+    }
     oldest = (oldest + 1) % kDelayWindows;
     --queued;
   }

@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 
+#include "filter_free_level.h"
 #include "pliant/estimation/filter_options.h"
 
 namespace pliant::estimation::filter_internal {
@@ -27,8 +28,22 @@ struct InternalTorque {
   void SetMotion(double acceleration_rad_s2, const Eigen::Vector2d& friction_columns) {
     regressor << acceleration_rad_s2, friction_columns[0], friction_columns[1], 1.0;
   }
-  double Torque() const { return coefficients.dot(regressor); }
-  double Variance() const { return regressor.dot(covariance * regressor); }
+  double Torque() const { return coefficients.dot(regressor) + (level.on ? level.Torque() : 0.0); }
+  // With the free level on, the level holds τ_b's doubt at this pose
+  // (LevelEquilibrium) and the other terms' doubt is theirs alone.
+  double Variance() const {
+    if (!level.on) return regressor.dot(covariance * regressor);
+    const Eigen::Vector3d motion = regressor.head<3>();
+    return motion.dot(covariance.topLeftCorner<3, 3>() * motion) +
+           level.Variance(LevelEquilibrium());
+  }
+  // The free level where nothing was learned: the table's error σ_rest² and τ_b's doubt.
+  FreeLevel level;
+  double rest_variance_nm2 = 0.0;
+  double LevelEquilibrium() const { return rest_variance_nm2 + covariance(3, 3); }
+  // This row's lesson for the level, taught with its batch (Learn): the
+  // residual without the level, weighted by how still the arm stands.
+  void AddLevelRow(double still, double residual_without_level, const Eigen::Vector3d& pose);
   // A row's lesson (weight: how much the arm moves as a free arm), taught
   // only once the contact chain has had kDelayWindows windows to say whether
   // something touched the instrument then (Batch).
@@ -42,6 +57,8 @@ struct InternalTorque {
     Eigen::Matrix4d information = Eigen::Matrix4d::Zero();
     Vector4 information_mean = Vector4::Zero();
     double teaching_s = 0.0, duration_s = 0.0, contact = 0.0;
+    double level_weight = 0.0, level_sum = 0.0;  // Σw and Σw·r over the still rows
+    Eigen::Vector3d level_pose_sum = Eigen::Vector3d::Zero();
   };
   static constexpr double kWindowS = 0.05;
   static constexpr int kDelayWindows = 10;

@@ -86,6 +86,9 @@ bool FilterOptions::IsValid(std::string* error) const {
     return Fail(error, "FilterOptions::effort_offset_rate_nm must be finite and >= 0 — N·m/√s, "
                        "or 0 for a constant offset");
   }
+  if (!(std::isfinite(free_level_drift_nm) && free_level_drift_nm >= 0.0)) {
+    return Fail(error, "FilterOptions::free_level_drift_nm must be finite and >= 0 — N·m/√s");
+  }
   if (!(std::isfinite(unloaded_start_s) && unloaded_start_s >= 0.0)) {
     return Fail(error, "FilterOptions::unloaded_start_s must be finite and >= 0 — seconds at the "
                        "log's start with the instrument untouched and the arm still, e.g. 0.1, "
@@ -160,6 +163,8 @@ bool FilterOptions::IsValid(std::string* error) const {
                                 {"internal_bias_error_sd_nm", internal_bias_error_sd_nm},
                                 {"coulomb_speed_rad_s", coulomb_speed_rad_s},
                                 {"internal_torque_memory_s", internal_torque_memory_s},
+                                {"free_level_length_rad", free_level_length_rad},
+                                {"free_level_depth_length_m", free_level_depth_length_m},
                                 {"unmodelled_effort_speed_rad_s", unmodelled_effort_speed_rad_s},
                                 {"time_gap_s", time_gap_s}}) {
     if (!(std::isfinite(v) && v > 0.0)) {

@@ -197,7 +197,9 @@ void ComplianceFilter::Impl::UpdateMeasurements(const FilterSample& sample, Step
 void ComplianceFilter::Impl::UpdateEffort(const FilterSample& sample, int j, bool unloaded,
                                           StepTally* tally) {
   const bool mixture = InfersContact(sample);
-  if (!mixture) contact_probability[j] = 1.0;  // told: held (or the tare's known 0)
+  // Told: held, or, in the unloaded start, that nothing touches the
+  // instrument (the chain goes on from there free, not in contact).
+  if (!mixture) contact_probability[j] = unloaded ? 0.0 : 1.0;
   if (unloaded) {  // the load is known: 0, with no doubt, whatever the effort says
     joint[j].mean[kTorque] = 0.0;
     joint[j].covariance.row(kTorque).setZero();
@@ -254,12 +256,25 @@ void ComplianceFilter::Impl::UpdateEffort(const FilterSample& sample, int j, boo
   } else if (mixture) {
     arm.SetMotion(motion[j].acceleration_rad_s2, arm_friction.row(j));
   }
+  const FilterJointState& s = joint[j];
+  // The free arm's pose (FreeSpeed's z) and how still it stands there: where
+  // the free level is and whether this row may teach it.
+  const double pose_rad =
+      sample.encoder_rad[j] - s.mean[kScale] * ComplianceAtDepth(j) *
+                                  (effort - tau0 - extra_internal_torque_nm[j] - s.mean[kOffset]);
+  const double still =
+      1.0 - std::pow(std::tanh(free_motion[j].velocity_rad_s / options.coulomb_speed_rad_s), 2);
+  if (mixture) {  // (the other joint's pose and stillness: its last row's)
+    pending[j].pose_rad = pose_rad, pending[j].still = still;
+    arm.level.Predict(LevelPose(sample), step_dt, ArmStill(), arm.LevelEquilibrium());
+  }
   const double arm_torque = mixture ? arm.Torque() : 0.0;
+  // With the level on, σ_rest is the level's equilibrium (InternalTorque::Variance).
+  const double settled = arm.level.on ? noise : rest;
   const double variance =
       sample.tip_fixed ? HeldEffortVariance(options, inertial_torque)
-      : mixture        ? rest + moving * unmodelled[j].variance + arm.Variance()
+      : mixture        ? settled + moving * unmodelled[j].variance + arm.Variance()
                        : noise;
-  const FilterJointState& s = joint[j];
   const double residual =
       effort - tau0 - inertial - arm_torque - extra_internal_torque_nm[j] - s.mean[kOffset];
   double log_likelihood_ratio = 0.0, held_evidence = 0.0, level_weight = 0.0, free_variance = 0.0;
@@ -293,9 +308,10 @@ void ComplianceFilter::Impl::UpdateEffort(const FilterSample& sample, int j, boo
         ContactLogLikelihoodRatio(residual, sd_c * sd_c + free_variance, residual, free_variance,
                                   dof, held_evidence, level_weight);
   }
-  pending[j] = PendingEffort{true, mixture, residual, variance, moving, rest, arm_torque,
-                             log_likelihood_ratio, held_evidence, level_weight, free_variance,
-                             transitions};
+  pending[j] = PendingEffort{true,       mixture,       residual,      variance,
+                             moving,     rest,          arm_torque,    still,
+                             pose_rad,   log_likelihood_ratio,         held_evidence,
+                             level_weight,              free_variance, transitions};
 }
 
 // The effort's update once the contact is known: what the no-contact rows
@@ -311,6 +327,8 @@ void ComplianceFilter::Impl::FinishEffort(const FilterSample& sample, int j, boo
                             -std::expm1(-step_dt / options.unmodelled_effort_memory),
                         e.residual, e.rest);
     if (!options.quasi_static) {
+      InternalTorque& arm = internal_torque[j];
+      arm.AddLevelRow(ArmStill(), e.residual + arm.level.Torque(), LevelPose(sample));
       internal_torque[j].Learn(e.moving, e.residual + e.arm_torque,
                                e.rest + unmodelled[j].variance, contact_probability[j], step_dt,
                                options.internal_torque_memory_s);
@@ -333,6 +351,21 @@ double ComplianceFilter::Impl::FreeSpeed(int j, const FilterSample& sample, doub
   const double r = effort_less_bias - extra_internal_torque_nm[j] - s.mean[kOffset];
   free_motion[j].Advance(step_dt, sample.encoder_rad[j] - s.mean[kScale] * ComplianceAtDepth(j) * r);
   return free_motion[j].velocity_rad_s;
+}
+
+// Where the free level is: both joints' free-arm angles z (the last computed)
+// and the insertion. The bias table's error is a function of the whole pose.
+Eigen::Vector3d ComplianceFilter::Impl::LevelPose(const FilterSample& sample) const {
+  return Eigen::Vector3d(pending[0].pose_rad, pending[1].pose_rad, sample.insertion_depth_m);
+}
+
+// How still the whole arm stands (a joint the log does not record counts as
+// still): one joint's effort carries the others' motion through the arm's
+// coupled dynamics, which the per-joint torque does not model.
+double ComplianceFilter::Impl::ArmStill() const {
+  double still = 1.0;
+  for (int k = 0; k < 2; ++k) still *= options.joint_recorded[k] ? pending[k].still : 1.0;
+  return still;
 }
 
 }  // namespace pliant::estimation

@@ -46,6 +46,7 @@ const std::pair<const char*, Field> kFields[] = {
     {"contact_end_rate_hz", &FilterOptions::contact_end_rate_hz},
     {"learn_contact_rates", &FilterOptions::learn_contact_rates},
     {"contact_rate_memory_s", &FilterOptions::contact_rate_memory_s},
+    {"free_level", &FilterOptions::free_level},  // (docs/decisions/contact-free-level.md)
 };
 
 std::string Names() {

@@ -11,9 +11,9 @@
 #include <gtest/gtest.h>
 
 #include "../support/paper_parameters.h"
+#include "../support/pushed_tip.h"
 #include "pliant/estimation/compliance_correction.h"
 #include "pliant/estimation/filter.h"
-#include "pliant/models/effects/backlash_hysteresis.h"
 
 namespace pliant::estimation {
 namespace {
@@ -136,18 +136,8 @@ PushOutcome Push(unsigned seed, double rate_hz = kRate, double ramp_s = 1.0, dou
   for (int k = 0; k < int(end_s * rate_hz); ++k) {
     const double t = k / rate_hz;
     const Eigen::Vector2d load = push * std::clamp((t - 0.5) / ramp_s, 0.0, 1.0);
-    FilterSample s;
-    s.time_s = t;
-    s.insertion_depth_m = depth;
-    for (int j = 0; j < 2; ++j) {
-      const auto& jp = p.joints[j];
-      backlash[j] = models::BacklashHysteresisStep(backlash[j], load[j], jp.backlash_rad,
-                                                   jp.deadzone_width_nm);
-      s.encoder_rad[j] = tip[j] + backlash[j] + models::ComplianceAt(jp, depth) * load[j] +
-                         o.encoder_noise_rad * normal(rng);
-      s.effort_nm[j] = models::BiasTorqueAt(jp, s.encoder_rad[j], depth) + load[j] +
-                       o.effort_noise_nm * normal(rng);
-    }
+    const FilterSample s =
+        testing::PushedTipSample(p, o, t, depth, tip, load, 0.0, &backlash, &rng, &normal);
     const FilterEstimate e = filter.Step(s);
     if (e.contact_probability.minCoeff() > 0.99 && t < out.recognised_s) {
       out.recognised_s = t;

@@ -291,6 +291,18 @@ struct FilterOptions {
   double internal_bias_error_sd_nm = 0.1;  ///< τ_b: the bias table's mean error along the path
   double coulomb_speed_rad_s = 0.05;  ///< v_f
   double internal_torque_memory_s = 30.0;
+  /// The free level (continuous logs without the hint): where the free arm
+  /// settles, its effort's residual beyond the learned torque (the bias
+  /// table's error at that pose, σ_rest at the start) is learned as a field
+  /// over the pose, so that a load that comes while the arm stands there is
+  /// told from the table's error by its change, not by its size against σ_rest
+  /// (docs/decisions/contact-free-level.md). The field's correlation lengths
+  /// over the joints' angles (rad) and the insertion (m), and its drift in
+  /// time at one pose (N·m/√s).
+  bool free_level = true;
+  double free_level_length_rad = 0.1;
+  double free_level_depth_length_m = 0.02;
+  double free_level_drift_nm = 0.001;
   // Never diverge (docs/decisions/reinitialise.md).
   /// A step of more than this between two rows is a time gap: the tip and the
   /// load are re-initialised (kFlagReinitialised), s.
