@@ -7,12 +7,13 @@
 # cli/pliant, bench/filter_accuracy_bench and bench/filter_consistency_bench, and for the
 # tests step the test programs in tests/. Nothing is built here.
 #
-# The quick part (sections 1-7 of the page) took 172-241 s in three runs on the 2-core
+# The quick part (sections 1-7 and 13 of the page) took 172-241 s in three runs on the 2-core
 # reference machine under load (nice -n 19). It simulates 0.5 GB of logs into the work
 # directory (default: a new directory under /tmp, removed at the end unless --work is
 # given). --long adds the Monte Carlo studies of section 8, with 2 threads: divot 16 s,
 # known instrument 4 s, clamped 127-145 s, identify 401 s (each of its
-# 200 trials simulates and identifies a calibration), families 33 s (1.5 kHz) and 8 s (100 Hz).
+# 200 trials simulates and identifies a calibration), families 33 s (1.5 kHz), 8 s (100 Hz)
+# and 14 s (1.5 kHz without the hint), and the second generator's families (1 min).
 #
 # The real-data score (section 3) needs clamped_cv.py (docs/real-data.md); set CLAMPED_CV
 # to its path if it is not at /work/shared/tools/clamped_cv.py. Without it that step is
@@ -159,6 +160,9 @@ for opts in "" "--first-seed 5000" "--paper-pushes" "--paper-pushes --first-seed
     | sed -n -e '/one sample per run/p' -e '/^  tip held  /p'
 done
 
+section "13. Do no harm: the real free-motion bag"
+show /usr/bin/python3 experiments/free_motion.py "$pliant" "$work/free_motion"
+
 section "7. The tests that hold the stated bounds"
 gtest() {  # PROGRAM FILTER
   local exe=$build/tests/$1
@@ -185,13 +189,16 @@ if [ $long -eq 1 ]; then
       --threads 2 --no-plots
     echo "  ($((SECONDS - t0)) s)"
   done
-  # The families: instruments, noise and sample rates unlike the defaults.
-  for study in families_1500hz families_100hz; do
+  # The families: instruments, noise and sample rates unlike the defaults; the
+  # last without the tip_fixed hint.
+  for study in families_1500hz families_100hz families_1500hz_online; do
     t0=$SECONDS
     show "$pliant" montecarlo experiments/studies/${study}.json -o "$work/mc_$study" \
       --threads 2 --no-plots
     echo "  ($((SECONDS - t0)) s)"
   done
+  section "12. The filter on second-generator families unlike the defaults (--long)"
+  show /usr/bin/python3 experiments/second_generator/filter_families.py "$pliant" "$work/families"
   echo
   echo "with --long: $((SECONDS - start)) s"
 fi
