@@ -160,9 +160,6 @@ for opts in "" "--first-seed 5000" "--paper-pushes" "--paper-pushes --first-seed
     | sed -n -e '/one sample per run/p' -e '/^  tip held  /p'
 done
 
-section "13. Do no harm: the real free-motion bag"
-show /usr/bin/python3 experiments/free_motion.py "$pliant" "$work/free_motion"
-
 section "7. The tests that hold the stated bounds"
 gtest() {  # PROGRAM FILTER
   local exe=$build/tests/$1
@@ -178,6 +175,9 @@ gtest estimation_tests 'JointSmoother.*:ComplianceFilter.*:FilterRealTime.*:Quas
 gtest diagnostics_tests 'Catalogue/*:DiagnoseChannels.*'
 gtest montecarlo_tests 'MontecarloCli.*'
 gtest cli_tests 'Commands/KillDuring.*'
+
+section "13. Do no harm: the real free-motion bag"
+show /usr/bin/python3 experiments/free_motion.py "$pliant" "$work/free_motion"
 echo
 echo "quick part: $((SECONDS - start)) s"
 
