@@ -244,7 +244,9 @@ double ContactAfterPosePair(const FilterOptions& o, const ContactRates& rates, d
 constexpr double kFreeMotionTimeS = 0.05;
 
 void FreeArmMotion::Advance(double dt, double z_rad) {
-  if (!std::isfinite(z_rad) || !(dt > 0.0)) return;
+  if (!std::isfinite(z_rad)) return;
+  this->z_rad = z_rad;
+  if (!(dt > 0.0)) return;
   if (!started) {
     started = true;
     level_rad = z_rad;

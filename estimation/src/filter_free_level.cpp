@@ -15,6 +15,7 @@ void FreeLevel::Start(const FilterOptions& o, double equilibrium_nm2) {
   still = 1.0;
   inverse_length_ << 1.0 / o.free_level_length_rad, 1.0 / o.free_level_length_rad,
       1.0 / o.free_level_depth_length_m;
+  pose_.setZero(), anchor_pose_.setZero();
   anchored_ = false;
   time_s_ = anchor_time_s_ = anchor_mean_ = anchor_variance_ = 0.0;
   drift2_ = o.free_level_drift_nm * o.free_level_drift_nm;

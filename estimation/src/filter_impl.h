@@ -142,7 +142,7 @@ double HeldWindowEvidence(const PoseTransitions& t);
 // critically damped α-β) with time constant kFreeMotionTimeS.
 struct FreeArmMotion {
   bool started = false;
-  double level_rad = 0.0, velocity_rad_s = 0.0;
+  double z_rad = 0.0, level_rad = 0.0, velocity_rad_s = 0.0;  // the last z, its tracked level
   double theta_dt_s = -1.0, theta = 0.0;  // e^(−dt/T) for the last dt (rarely changes)
   void Advance(double dt, double z_rad);
 };

@@ -257,13 +257,11 @@ void ComplianceFilter::Impl::UpdateEffort(const FilterSample& sample, int j, boo
     arm.SetMotion(motion[j].acceleration_rad_s2, arm_friction.row(j));
   }
   const FilterJointState& s = joint[j];
-  // The free arm's pose (FreeSpeed's z) and how still it stands there: where
-  // the free level is and whether this row may teach it.
+  // The free arm's pose (FreeSpeed's z, this row's) and how still it stands
+  // there: where the free level is and whether this row may teach it.
   double pose_rad = 0.0, still = 0.0;
   if (mixture && arm.level.on) {  // (the other joint's pose and stillness: its last row's)
-    pose_rad = sample.encoder_rad[j] -
-               s.mean[kScale] * ComplianceAtDepth(j) *
-                   (effort - tau0 - extra_internal_torque_nm[j] - s.mean[kOffset]);
+    pose_rad = free_motion[j].z_rad;
     const double speed = std::tanh(free_motion[j].velocity_rad_s / options.coulomb_speed_rad_s);
     still = 1.0 - speed * speed;
     pending[j].pose_rad = pose_rad, pending[j].still = still;
