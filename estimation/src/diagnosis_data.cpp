@@ -17,12 +17,6 @@ namespace {
 // Fewer compared samples than this cannot be cross-validated or fitted.
 constexpr std::size_t kMinimumSamples = 20;
 
-double ClearanceLoad(const models::JointParameters& joint) {
-  // The load over which the model's dead zone takes up the clearance; below a
-  // few times it the shaft's place in the clearance has memory the model lacks.
-  return std::max({joint.deadzone_width_nm, joint.tau_min_nm, 0.05});
-}
-
 models::BacklashDeadZoneEffect DeadZoneOf(const models::ModelParameters& p) {
   return models::BacklashDeadZoneEffect(p.joints[0].backlash_rad, p.joints[1].backlash_rad,
                                         ClearanceLoad(p.joints[0]), ClearanceLoad(p.joints[1]));
@@ -78,6 +72,12 @@ std::string ChooseReference(const io::Log& log, const io::StandardColumns& c,
 }
 
 }  // namespace
+
+double ClearanceLoad(const models::JointParameters& joint) {
+  // Below a few times this load the shaft's place in the clearance has memory
+  // the model lacks.
+  return std::max({joint.deadzone_width_nm, joint.tau_min_nm, 0.05});
+}
 
 BaseModel::BaseModel(const models::ModelParameters& parameters,
                      const std::vector<std::string>& refitted)

@@ -233,6 +233,9 @@ FitResult FitTerms(const Problem& problem, const BaseModel& model, const std::ve
 /// (kNarrowTakeUp: the width starts at, and its prior is about, a clearance's
 /// take-up, NarrowTakeUpNm).
 enum class Recalibration { kScale, kTilt, kTakeUp, kNarrowTakeUp };
+/// The load the diagnosis's dead zone takes the clearance up over (N·m): the
+/// parameters' width, never below tau_min or 0.05 N·m.
+double ClearanceLoad(const models::JointParameters& joint);
 /// The load a cannula clearance is taken up over, the width an identification
 /// starts from: the parameters' tau_min, at least 0.05 N·m.
 inline double NarrowTakeUpNm(const models::JointParameters& joint) {
@@ -343,6 +346,14 @@ struct TakeUpProbe {
   std::vector<CandidateFit> candidates;
   std::vector<std::string> notes;  ///< what was compared and found, in words
 };
+/// When a recorded joint's dead-zone width exceeds e × max(tau_min, 0.05 N·m),
+/// rows are compared from the clearance's take-up on (the model's compared
+/// load narrowed); false, and the model untouched, when no take-up is wide.
+bool CompareInsideWideTakeUp(const io::Log& log, BaseModel* model);
+/// With --add of a deflection effect on such a take-up: the rows compared as
+/// the probe compares them, and true (the added effects are then fitted with
+/// the take-up refitted from a clearance's, Recalibration::kNarrowTakeUp).
+bool RefitTakeUpWithAdded(const io::Log& log, const std::vector<Term>& added, BaseModel* model);
 /// Runs when a recorded joint's dead-zone width exceeds e × max(tau_min,
 /// 0.05 N·m) (the identification's prior on log w has sd 1): such a take-up
 /// may be a concave load-deflection curve absorbed. Say when the log cannot

@@ -95,6 +95,11 @@ void ApplyRecalibration(const EffectFinding& r, const std::string& provenance,
     models::ScaleCompliance(joint.compliance, scale);
     // A clearance cannot be negative: what a narrower fit asks beyond 0 is not physical.
     joint.backlash_rad = std::max(0.0, joint.backlash_rad + widening);
+    if (r.parameters.size() > std::size_t(6 + j)) {  // the take-up refitted: its width too
+      joint.deadzone_width_nm = diagnosis::ClearanceLoad(joint) * std::exp(r.parameters[6 + j]);
+      Append(&joint.sources["deadzone_width_nm"],
+             Formatted("refitted to %.4g N·m%.0s", joint.deadzone_width_nm, 0.0) + " by " + provenance);
+    }
     Append(&joint.sources["compliance"],
            Formatted("tilted in depth by %+.4f, scaled by %.4f", Tilt(r, j), scale) + " by " +
                provenance);
@@ -137,6 +142,10 @@ void ExtendCovariance(const models::ModelParameters& given, const models::ModelP
                       scale[i];
     }
     if (name.substr(7) == "backlash_rad") g(i, 2 + j) = 1.0;
+    if (name.substr(7) == "deadzone_width_nm" && offset > 6 + j) {
+      scale[i] = 0.0;  // w' = w·e^l: the refit's l alone
+      g(i, 6 + j) = scaled.joints[std::size_t(j)].deadzone_width_nm;
+    }
   }
   for (Eigen::Index k = 0; k < effect_size; ++k) g(old_size + k, offset + k) = 1.0;
   Eigen::MatrixXd old = Eigen::MatrixXd::Zero(old_size + effect_size, old_size + effect_size);

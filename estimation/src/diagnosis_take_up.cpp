@@ -145,21 +145,38 @@ std::string Verdict(const Problem& problem, const BaseModel& model, const TakeUp
 
 }  // namespace
 
+bool CompareInsideWideTakeUp(const io::Log& log, BaseModel* model) {
+  bool wide = false;
+  for (int j = 0; j < 2; ++j) {
+    const auto& joint = model->parameters().joints[j];
+    // No clearance (δ identified 0, as on the real joint 2 clamps), or a
+    // joint the log does not record: no take-up to look into.
+    if (!(joint.backlash_rad > 0.0) || !log.header.JointRecorded(j + 1)) continue;
+    const double narrow = NarrowTakeUpNm(joint);
+    wide = wide || model->clearance_load_nm(j) > kWideTakeUpFactor * narrow;
+  }
+  for (int j = 0; j < 2 && wide; ++j) {
+    const auto& joint = model->parameters().joints[j];
+    if (!(joint.backlash_rad > 0.0) || !log.header.JointRecorded(j + 1)) continue;
+    const double narrow = NarrowTakeUpNm(joint);
+    if (model->clearance_load_nm(j) > narrow) model->set_compared_load_nm(j, narrow);
+  }
+  return wide;
+}
+
+bool RefitTakeUpWithAdded(const io::Log& log, const std::vector<Term>& added, BaseModel* model) {
+  const bool deflection = std::any_of(added.begin(), added.end(), [](const Term& t) {
+    return t.effect->Info().channel == models::Channel::kDeflection;
+  });
+  return deflection && CompareInsideWideTakeUp(log, model);
+}
+
 TakeUpProbe ProbeWideTakeUp(const io::Log& log, const std::string& log_path,
                             const models::ModelParameters& parameters,
                             const DiagnoseOptions& options, const std::vector<std::string>& names) {
   TakeUpProbe probe;
   BaseModel model(parameters);
-  bool wide = false;
-  for (int j = 0; j < 2; ++j) {
-    // No clearance (δ identified 0, as on the real joint 2 clamps), or a
-    // joint the log does not record: no take-up to look into.
-    if (!(parameters.joints[j].backlash_rad > 0.0) || !log.header.JointRecorded(j + 1)) continue;
-    const double narrow = NarrowTakeUpNm(parameters.joints[j]);
-    wide = wide || model.clearance_load_nm(j) > kWideTakeUpFactor * narrow;
-    if (model.clearance_load_nm(j) > narrow) model.set_compared_load_nm(j, narrow);
-  }
-  if (!wide) return probe;
+  if (!CompareInsideWideTakeUp(log, &model)) return probe;
   Problem problem = BuildProblem(log, log_path, model, {}, options);
   const TakeUpBaseline base = FitBaseline(problem, model);
   const auto baseline_residual = Residuals(problem, model, base.fitted);

@@ -36,9 +36,11 @@ std::vector<ParameterSpec> BiasTorqueDepthEffect::Parameters() const {
 }
 
 std::vector<ParameterSpec> LoadDependentComplianceEffect::Parameters() const {
-  // At 1 N·m a gamma of 0.01 adds about 12-30 % to the paper's K(L).
+  // At 1 N·m a gamma or a beta of 0.01 adds about 12-30 % to the paper's K(L).
   return {{"gamma1", "rad/(N·m)^3", 0.0, -0.05, 0.05, 0.01},
-          {"gamma2", "rad/(N·m)^3", 0.0, -0.05, 0.05, 0.01}};
+          {"gamma2", "rad/(N·m)^3", 0.0, -0.05, 0.05, 0.01},
+          {"beta1", "rad/(N·m)^2", 0.0, -0.05, 0.05, 0.01},
+          {"beta2", "rad/(N·m)^2", 0.0, -0.05, 0.05, 0.01}};
 }
 
 std::vector<ParameterSpec> DeflectionCouplingEffect::Parameters() const {

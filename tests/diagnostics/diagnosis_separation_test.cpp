@@ -35,7 +35,7 @@ TEST(SeparatingExperiment, NamesTheConditionWhereThePredictionsDifferMost) {
   const BaseModel model(testing::ModelOf(testing::ShortDivot("{}")));
   const Problem problem = OneSample(20.0);
   const Term coupling = Fitted("deflection_coupling", {0.005, 0.0});
-  const Term cubic = Fitted("load_dependent_compliance", {0.0, 0.0});
+  const Term cubic = Fitted("load_dependent_compliance", {0.0, 0.0, 0.0, 0.0});
   const std::string text = SeparatingExperiment(problem, model, {}, coupling, cubic);
   EXPECT_NE(text.find("joint 2 to -2.0 N·m"), std::string::npos) << text;
   EXPECT_NE(text.find("deflection_coupling predicts 1.000 mm"), std::string::npos) << text;
@@ -49,8 +49,8 @@ TEST(SeparatingExperiment, OnALogOfPosesItHoldsARecordedJointAndNamesNoTime) {
   const BaseModel model(testing::ModelOf(testing::ShortDivot("{}")));
   Problem problem = OneSample(300.0, false, true);
   problem.quasi_static = true;
-  const Term cubic = Fitted("load_dependent_compliance", {0.0, 0.002});
-  const Term none = Fitted("load_dependent_compliance", {0.0, 0.0});
+  const Term cubic = Fitted("load_dependent_compliance", {0.0, 0.002, 0.0, 0.0});
+  const Term none = Fitted("load_dependent_compliance", {0.0, 0.0, 0.0, 0.0});
   const std::string text = SeparatingExperiment(problem, model, {}, cubic, none);
   EXPECT_EQ(text.rfind("hold joint 2 to ", 0), 0u) << text;
   EXPECT_EQ(text.find("into the log"), std::string::npos) << text;

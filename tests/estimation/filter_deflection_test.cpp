@@ -149,11 +149,13 @@ TEST(FilterDeflection, TheCouplingAtItsTrueValueCorrectsTheLoadedRowsAndStaysHon
   ExpectCorrectedAndHonest(c);
 }
 
-// load_dependent_compliance (γ = 0.01 rad/(N·m)³: 10 mrad at 1 N·m, the
-// incremental compliance K + 3γτ²): the effect's own slope enters the
-// encoder's row and the held load's increment. Rows loaded past 0.5 N·m.
+// load_dependent_compliance (γ = 0.01 rad/(N·m)³ and β = −0.005 rad/(N·m)²:
+// 5 mrad at 1 N·m, the incremental compliance K + 2β|τ| + 3γτ²): the effect's
+// own slope enters the encoder's row and the held load's increment. Rows
+// loaded past 0.5 N·m.
 TEST(FilterDeflection, ALoadDependentComplianceAtItsTrueValueCorrectsTheLoadedRows) {
-  const auto truth = WithEffect("load_dependent_compliance", {"gamma1", "gamma2"}, {0.01, 0.01});
+  const auto truth = WithEffect("load_dependent_compliance", {"gamma1", "gamma2", "beta1", "beta2"},
+                                {0.01, 0.01, -0.005, -0.005});
   const Comparison c = Compare(truth, [](const SyntheticRun& run, std::size_t k, int j) {
     return std::abs(run.true_torque[k][j]) > 0.5;
   });
