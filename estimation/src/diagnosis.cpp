@@ -255,19 +255,15 @@ Diagnosis Diagnose(const io::Log& log, const std::string& log_path,
   diagnosis::BaseModel model(parameters, options.added_effects);
   // An added deflection effect on a wide take-up is fitted as the probe
   // compares candidates: from the clearance's take-up on, with it refitted.
-  const bool take_up = options.probe_wide_take_up && diagnosis::RefitTakeUpWithAdded(log, added, &model);
+  const bool take_up = options.probe_wide_take_up &&
+                       diagnosis::RefitTakeUpWithAdded(diagnosis::Recorded(log), added, &model);
   Problem problem = diagnosis::BuildProblem(log, log_path, model, added, options);
   for (const Term& t : model.file_effects()) {
     problem.notes.push_back("the parameters hold " + t.name +
                             ": it is part of the model compared, not a candidate");
   }
   diagnosis::SetRecalibration(model, options.recalibrate_base, &problem);
-  if (take_up && !problem.added_refit.empty()) {
-    problem.added_refit = {BaseRecalibrationTerm(model, diagnosis::Recalibration::kNarrowTakeUp)};
-    problem.notes.push_back("the parameters' take-up is wide: the added effects are fitted with it "
-                            "refitted from a clearance's (K's scale and tilt, δ, the width), on the "
-                            "loads from twice the clearance's take-up");
-  }
+  if (take_up) diagnosis::FitAddedWithTheTakeUp(model, &problem);
   const std::vector<bool> all(problem.groups, true);
   Diagnosis d;
   d.reference = problem.reference;

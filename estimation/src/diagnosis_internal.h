@@ -349,11 +349,16 @@ struct TakeUpProbe {
 /// When a recorded joint's dead-zone width exceeds e × max(tau_min, 0.05 N·m),
 /// rows are compared from the clearance's take-up on (the model's compared
 /// load narrowed); false, and the model untouched, when no take-up is wide.
-bool CompareInsideWideTakeUp(const io::Log& log, BaseModel* model);
-/// With --add of a deflection effect on such a take-up: the rows compared as
-/// the probe compares them, and true (the added effects are then fitted with
-/// the take-up refitted from a clearance's, Recalibration::kNarrowTakeUp).
-bool RefitTakeUpWithAdded(const io::Log& log, const std::vector<Term>& added, BaseModel* model);
+bool CompareInsideWideTakeUp(std::array<bool, 2> recorded, BaseModel* model);
+/// The joints a log records.
+std::array<bool, 2> Recorded(const io::Log& log);
+/// With an added deflection effect (--add, identify --effect) on such a
+/// take-up: the rows compared as the probe compares them, and true.
+bool RefitTakeUpWithAdded(std::array<bool, 2> recorded, const std::vector<Term>& added,
+                          BaseModel* model);
+/// The added effects then fitted with the take-up refitted from a
+/// clearance's (Recalibration::kNarrowTakeUp), and a note saying so.
+void FitAddedWithTheTakeUp(const BaseModel& model, Problem* problem);
 /// Runs when a recorded joint's dead-zone width exceeds e × max(tau_min,
 /// 0.05 N·m) (the identification's prior on log w has sd 1): such a take-up
 /// may be a concave load-deflection curve absorbed. Say when the log cannot

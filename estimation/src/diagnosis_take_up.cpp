@@ -145,30 +145,44 @@ std::string Verdict(const Problem& problem, const BaseModel& model, const TakeUp
 
 }  // namespace
 
-bool CompareInsideWideTakeUp(const io::Log& log, BaseModel* model) {
+std::array<bool, 2> Recorded(const io::Log& log) {
+  return {log.header.JointRecorded(1), log.header.JointRecorded(2)};
+}
+
+bool CompareInsideWideTakeUp(std::array<bool, 2> recorded, BaseModel* model) {
   bool wide = false;
   for (int j = 0; j < 2; ++j) {
     const auto& joint = model->parameters().joints[j];
     // No clearance (δ identified 0, as on the real joint 2 clamps), or a
     // joint the log does not record: no take-up to look into.
-    if (!(joint.backlash_rad > 0.0) || !log.header.JointRecorded(j + 1)) continue;
+    if (!(joint.backlash_rad > 0.0) || !recorded[j]) continue;
     const double narrow = NarrowTakeUpNm(joint);
     wide = wide || model->clearance_load_nm(j) > kWideTakeUpFactor * narrow;
   }
   for (int j = 0; j < 2 && wide; ++j) {
     const auto& joint = model->parameters().joints[j];
-    if (!(joint.backlash_rad > 0.0) || !log.header.JointRecorded(j + 1)) continue;
+    if (!(joint.backlash_rad > 0.0) || !recorded[j]) continue;
     const double narrow = NarrowTakeUpNm(joint);
     if (model->clearance_load_nm(j) > narrow) model->set_compared_load_nm(j, narrow);
   }
   return wide;
 }
 
-bool RefitTakeUpWithAdded(const io::Log& log, const std::vector<Term>& added, BaseModel* model) {
+bool RefitTakeUpWithAdded(std::array<bool, 2> recorded, const std::vector<Term>& added,
+                          BaseModel* model) {
   const bool deflection = std::any_of(added.begin(), added.end(), [](const Term& t) {
     return t.effect->Info().channel == models::Channel::kDeflection;
   });
-  return deflection && CompareInsideWideTakeUp(log, model);
+  return deflection && CompareInsideWideTakeUp(recorded, model);
+}
+
+void FitAddedWithTheTakeUp(const BaseModel& model, Problem* problem) {
+  if (problem->added_refit.empty()) return;  // no recalibration asked for
+  problem->added_refit = {BaseRecalibrationTerm(model, Recalibration::kNarrowTakeUp)};
+  problem->notes.push_back(
+      "the parameters' take-up is wide: the added effects are fitted with it refitted from a "
+      "clearance's (K's scale and tilt, δ, the width), on the loads from twice the clearance's "
+      "take-up");
 }
 
 TakeUpProbe ProbeWideTakeUp(const io::Log& log, const std::string& log_path,
@@ -176,7 +190,7 @@ TakeUpProbe ProbeWideTakeUp(const io::Log& log, const std::string& log_path,
                             const DiagnoseOptions& options, const std::vector<std::string>& names) {
   TakeUpProbe probe;
   BaseModel model(parameters);
-  if (!CompareInsideWideTakeUp(log, &model)) return probe;
+  if (!CompareInsideWideTakeUp(Recorded(log), &model)) return probe;
   Problem problem = BuildProblem(log, log_path, model, {}, options);
   const TakeUpBaseline base = FitBaseline(problem, model);
   const auto baseline_residual = Residuals(problem, model, base.fitted);

@@ -134,7 +134,15 @@ LogEffectFit FitEffectsOnLogs(const std::vector<NamedLog>& logs,
   std::vector<Term> added;
   for (const auto& name : names) added.push_back(diagnosis::MakeTerm(name));
   // The file's other effects stay in the model at their values.
-  const diagnosis::BaseModel model(parameters, names);
+  diagnosis::BaseModel model(parameters, names);
+  std::array<bool, 2> recorded = {false, false};
+  for (const NamedLog& named : logs) {
+    if (!diagnosis::HasHeldTip(*named.log)) continue;
+    for (int j = 0; j < 2; ++j) recorded[j] = recorded[j] || named.log->header.JointRecorded(j + 1);
+  }
+  // A deflection effect on a wide take-up is fitted as diagnose --add fits it.
+  const bool take_up = options.probe_wide_take_up &&
+                       diagnosis::RefitTakeUpWithAdded(recorded, added, &model);
   // The identification reads the tip only where it was held: the truth a
   // simulated log carries (q*_true) is for scoring, never for fitting.
   options.reference = "tip_fixed";
@@ -162,6 +170,10 @@ LogEffectFit FitEffectsOnLogs(const std::vector<NamedLog>& logs,
   problem.folds = std::min(std::max(2, options.folds), problem.groups);
   for (int g = 0; g < problem.groups; ++g) problem.fold_of_group.push_back(g % problem.folds);
   diagnosis::SetRecalibration(model, options.recalibrate_base, &problem);
+  if (take_up) {
+    diagnosis::FitAddedWithTheTakeUp(model, &problem);
+    out.notes.push_back(problem.notes.back());
+  }
   std::vector<Term> fixed;
   out.fitted = diagnosis::FitAdded(problem, model, added, &fixed);
   out.samples = problem.samples.size();

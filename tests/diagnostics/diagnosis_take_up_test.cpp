@@ -16,6 +16,7 @@
 
 #include "diagnosis_support.h"
 #include "pliant/estimation/diagnosis.h"
+#include "pliant/estimation/effect_fit.h"
 #include "pliant/models/smooth.h"
 
 namespace pliant::testing {
@@ -201,6 +202,22 @@ TEST(DiagnoseTakeUp, AddedOnAWideTakeUpTheStiffeningIsFittedWithTheTakeUpRefitte
 // Twelve pushes are too few to tell: the diagnosis says so and names the push
 // that would, from both fitted curves; what the wide take-up made look
 // missing on the loads beyond it (backlash_depth) is no longer called so.
+// `pliant identify --effect` fits it the same way on the held-tip rows: the
+// error falls by more than half from the parameters as given, and the width
+// is a clearance's again.
+TEST(DiagnoseTakeUp, IdentifiedWithTheEffectTheTakeUpIsRefittedAsWhenAdded) {
+  const StiffeningCase c = Stiffening();
+  const auto fit = estimation::FitEffectsOnLogs({{&c.log, "divot.csv"}}, c.absorbed,
+                                                {"load_dependent_compliance"}, {});
+  std::printf("  held out %.4f as given, %.4f with the effect\n", fit.rms_given_mm,
+              fit.rms_with_effects_mm);
+  EXPECT_LT(fit.rms_with_effects_mm, 0.5 * fit.rms_given_mm);
+  ASSERT_TRUE(fit.fitted.recalibration.has_value());
+  const auto written = estimation::WithFittedEffects(c.absorbed, fit.fitted, "identify");
+  for (int j = 0; j < 2; ++j)
+    EXPECT_LT(written.joints[j].deadzone_width_nm, kWideTakeUpNm / std::exp(1.0)) << j;
+}
+
 TEST(DiagnoseTakeUp, OnAShortLogItSaysItCannotTellAndNamesThePush) {
   const auto scenario = ShortDivot(kCubic);
   const io::Log log = experiments::Simulate(scenario, 7).log;
