@@ -55,6 +55,8 @@ void PrintHuman(const estimation::Diagnosis& d, const std::string& html) {
     for (const auto& n : d.added_effects) names += (names.empty() ? "" : " + ") + n;
     std::printf(" (with %s)", names.c_str());
   }
+  std::printf("\n  of which the sensors' noise alone: %.3f mm (no model goes below it)",
+              d.noise_floor_mm);
   std::printf("\n  with the model's compliance scale and clearance refitted: %.3f mm (what each "
               "candidate is scored against)\n",
               d.rms_recalibrated_mm);

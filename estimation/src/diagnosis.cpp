@@ -366,6 +366,10 @@ Diagnosis Diagnose(const io::Log& log, const std::string& log_path,
     d.rms_after_mm = d.rms_before_mm;
   }
 
+  // The noise is the same in both; the model's error, which the floor also
+  // reads where it changes fast, is smaller in one.
+  d.noise_floor_mm = std::min(diagnosis::NoiseFloorMm(problem, heldout_before),
+                              diagnosis::NoiseFloorMm(problem, after));
   d.before = Statistics(problem, before, options);
   d.after = Statistics(problem, after, options);
   if (problem.joint_recorded[0] && problem.joint_recorded[1]) {

@@ -185,6 +185,10 @@ Problem BuildProblem(const io::Log& log, const std::string& log_path, const Base
 /// averaged out).
 double TipRmsMm(const Problem& problem, const std::vector<Eigen::Vector2d>& residual,
                 const std::vector<bool>* keep_group = nullptr);
+/// What the sensors' white noise alone leaves in TipRmsMm (mm): its variance
+/// per sample, from the residual's steps between neighbouring samples, over
+/// each joint's samples per window.
+double NoiseFloorMm(const Problem& problem, const std::vector<Eigen::Vector2d>& residual);
 
 // --- statistics ---------------------------------------------------------------
 /// Lag-1 autocorrelation of a series cut into runs (a new run where `run`

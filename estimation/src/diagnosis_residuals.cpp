@@ -46,14 +46,34 @@ std::vector<Eigen::Vector2d> Residuals(const Problem& problem, const BaseModel& 
   return residual;
 }
 
-double TipRmsMm(const Problem& problem, const std::vector<Eigen::Vector2d>& residual,
-                const std::vector<bool>* keep_group) {
-  double sum[2] = {0.0, 0.0}, count[2] = {0.0, 0.0};
+namespace {
+
+// Per joint, over the residual's windows (DiagnoseOptions::rms_window_s,
+// within a segment): the sum over windows of n·mean², the samples, the
+// windows, and for neighbouring windows of a segment the squared change of
+// their means and the sum of 1/n of both (mm at the tip).
+struct WindowedSums {
+  double mean_square_sum[2] = {0.0, 0.0}, samples[2] = {0.0, 0.0}, windows[2] = {0.0, 0.0};
+  double change_square_sum[2] = {0.0, 0.0}, change_weight[2] = {0.0, 0.0};
+};
+
+WindowedSums SumWindows(const Problem& problem, const std::vector<Eigen::Vector2d>& residual,
+                        const std::vector<bool>* keep_group) {
+  WindowedSums w;
   for (int j = 0; j < 2; ++j) {
     double window_sum = 0.0, window_count = 0.0, window_start = 0.0;
+    double last_mean = 0.0, last_count = 0.0;  // the segment's previous window, if any
     int window_group = -1;
     auto close = [&] {
-      if (window_count > 0.0) sum[j] += window_sum * window_sum / window_count;
+      if (window_count <= 0.0) return;
+      const double mean = window_sum / window_count;
+      w.mean_square_sum[j] += window_sum * mean;
+      w.windows[j] += 1.0;
+      if (last_count > 0.0) {
+        w.change_square_sum[j] += (mean - last_mean) * (mean - last_mean);
+        w.change_weight[j] += 1.0 / window_count + 1.0 / last_count;
+      }
+      last_mean = mean, last_count = window_count;
       window_sum = window_count = 0.0;
     };
     for (std::size_t i = 0; i < residual.size(); ++i) {
@@ -62,17 +82,44 @@ double TipRmsMm(const Problem& problem, const std::vector<Eigen::Vector2d>& resi
       if (!s.used[j]) continue;
       if (s.group != window_group || s.state.time_s - window_start >= problem.rms_window_s) {
         close();
+        if (s.group != window_group) last_count = 0.0;  // a new segment
         window_group = s.group, window_start = s.state.time_s;
       }
       window_sum += residual[i][j] * s.mm_per_rad[j];
       window_count += 1.0;
-      count[j] += 1.0;
+      w.samples[j] += 1.0;
     }
     close();
   }
+  return w;
+}
+
+}  // namespace
+
+double TipRmsMm(const Problem& problem, const std::vector<Eigen::Vector2d>& residual,
+                const std::vector<bool>* keep_group) {
+  const WindowedSums w = SumWindows(problem, residual, keep_group);
   double mean_square = 0.0;
-  for (int j = 0; j < 2; ++j) mean_square += count[j] > 0.0 ? sum[j] / count[j] : 0.0;
+  for (int j = 0; j < 2; ++j)
+    mean_square += w.samples[j] > 0.0 ? w.mean_square_sum[j] / w.samples[j] : 0.0;
   return std::sqrt(mean_square);
+}
+
+double NoiseFloorMm(const Problem& problem, const std::vector<Eigen::Vector2d>& residual) {
+  // A window of n samples keeps v/n of the noise in its mean (v the noise's
+  // variance per sample, with whatever correlation it has within a window);
+  // over a joint's windows that is v·windows/samples of TipRmsMm's mean
+  // square. Neighbouring windows' means differ by noise of variance
+  // v·(1/n + 1/n') and by what the model's error changes in one window,
+  // which is small: v is their ratio, and the floor is, if anything, high.
+  const WindowedSums w = SumWindows(problem, residual, nullptr);
+  double floor_square = 0.0;
+  for (int j = 0; j < 2; ++j) {
+    if (w.change_weight[j] <= 0.0 || w.samples[j] <= 0.0) continue;
+    const double variance = w.change_square_sum[j] / w.change_weight[j];
+    floor_square += variance * w.windows[j] / w.samples[j];
+  }
+  return std::sqrt(floor_square);
 }
 
 }  // namespace pliant::estimation::diagnosis

@@ -7,7 +7,9 @@ then `--add` the true effect and read the held-out error before and after.
 The control's held-out error (nothing hidden: the sensors' noise left after
 the 0.05 s windows and the generator's own take-up and bias shapes) is a
 floor no added effect can go below; "above the control" is the share of the
-error beyond it, in quadrature, that the added effect removes.
+error beyond it, in quadrature, that the added effect removes, and "above the
+noise" the same beyond the log's own noise floor as the diagnosis reads it
+(`noise_floor`, from the residual alone: what a user without a control has).
 
 Usage: hit_rate.py PLIANT_BINARY OUT_DIR [--seed N] [--case NAME ...]
 """
@@ -51,9 +53,9 @@ def main():
     cases = args.case or generate.CASES
     subprocess.run([sys.executable, os.path.join(HERE, "generate.py"), args.out_dir,
                     "--seed", str(args.seed)] + sum((["--case", c] for c in cases), []), check=True)
-    print("| hidden effect | named first | missing | also flagged | held-out RMS before -> with the truth added (mm) | cut | above the control |")
-    print("|---|---|---|---|---|---|---|")
-    hits, cuts, control, excess = 0, [], None, []
+    print("| hidden effect | named first | missing | also flagged | held-out RMS before -> with the truth added (mm) | cut | above the control | noise floor (mm) | above the noise |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    hits, cuts, control, excess, beyond_noise = 0, [], None, [], []
     for case in cases:
         d = os.path.join(args.out_dir, case)
         params = os.path.join(d, "identified.json")
@@ -81,13 +83,18 @@ def main():
                 cuts.append(cut)
                 share = above(control, added["rms_before"], added["rms_after"])
                 excess.append(share)
-                cell = "%.3f -> %.3f | %.0f %% | %s" % (added["rms_before"], added["rms_after"], 100 * cut,
-                                                    "-" if share is None else "%.0f %%" % (100 * share))
+                floor = added["noise_floor"]
+                own = above(floor, added["rms_before"], added["rms_after"])
+                beyond_noise.append(own)
+                cell = "%.3f -> %.3f | %.0f %% | %s | %.3f | %s" % (
+                    added["rms_before"], added["rms_after"], 100 * cut,
+                    "-" if share is None else "%.0f %%" % (100 * share), floor,
+                    "-" if own is None else "%.0f %%" % (100 * own))
             else:
-                cell = "failed: %s | |" % error
+                cell = "failed: %s | | | |" % error
         else:
             control = result["rms_before"]
-            cell = "%.3f | - | -" % control
+            cell = "%.3f | - | - | %.3f | -" % (control, result["noise_floor"])
         print("| %s | %s | %s%s | %s | %s |" % (case, first, missing or "none", "" if hit else " (wrong)",
                                               ", ".join(flagged) or "-", cell))
     print()
@@ -99,6 +106,9 @@ def main():
     if control is not None and cuts:
         print("adding the true effect removes >= 50 %% of the error above the control's %.3f mm: %d of %d"
               % (control, sum(e is not None and e >= 0.5 for e in excess), len(effects)))
+    if beyond_noise:
+        print("adding the true effect removes >= 50 %% of the error above the log's own noise floor: %d of %d"
+              % (sum(e is not None and e >= 0.5 for e in beyond_noise), len(effects)))
 
 
 if __name__ == "__main__":

@@ -83,6 +83,8 @@ std::string StatisticsTable(const estimation::Diagnosis& d) {
   std::string t = "<table>\n" + Row({"", "model as given", "with the effect", "unit"}, "th");
   t += Row({"RMS error at the tip, held out", Number("%.3f", d.rms_before_mm),
             Number("%.3f", d.rms_after_mm), "mm"});
+  t += Row({"of which the sensors' noise alone (no model goes below it)",
+            Number("%.3f", d.noise_floor_mm), Number("%.3f", d.noise_floor_mm), "mm"});
   t += Row({"RMS residual, joint 1 / 2", pair("%.3f", 1e3 * b.rms_rad[0], 1e3 * b.rms_rad[1]),
             pair("%.3f", 1e3 * a.rms_rad[0], 1e3 * a.rms_rad[1]), "mrad"});
   t += Row({"mean residual, joint 1 / 2", pair("%.3f", 1e3 * b.bias_rad[0], 1e3 * b.bias_rad[1]),

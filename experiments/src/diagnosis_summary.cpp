@@ -99,6 +99,7 @@ nlohmann::ordered_json DiagnosisSummaryJson(const estimation::Diagnosis& d) {
               {"channels", channels},
               {"rms_unit", "mm"},
               {"rms_recalibrated", d.rms_recalibrated_mm},
+              {"noise_floor", d.noise_floor_mm},
               {"reference", d.reference},
               {"added_effects", d.added_effects},
               {"added", added},

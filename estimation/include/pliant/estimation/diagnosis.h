@@ -152,6 +152,9 @@ struct Diagnosis {
   /// (DiagnoseOptions::recalibrate_base; else the model as given): the
   /// baseline every candidate's score is measured against.
   double rms_recalibrated_mm = 0.0;
+  /// What the sensors' white noise alone leaves in these held-out RMS errors
+  /// (mm): no model goes below it (docs/diagnose-method.md).
+  double noise_floor_mm = 0.0;
   std::optional<std::string> missing_effect;
   ResidualStatistics before;
   ResidualStatistics after;
