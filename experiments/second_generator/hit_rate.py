@@ -11,7 +11,11 @@ error beyond it, in quadrature, that the added effect removes, and "above the
 noise" the same beyond the log's own noise floor as the diagnosis reads it
 (`noise_floor`, from the residual alone: what a user without a control has).
 
-Usage: hit_rate.py PLIANT_BINARY OUT_DIR [--seed N] [--case NAME ...]
+Usage: hit_rate.py PLIANT_BINARY OUT_DIR [--seed N] [--case NAME ...] [instrument options]
+
+The instrument options (--k-scale K1 K2, --clearance D1 D2, --take-up W,
+--noise-scale X, --rate HZ) go to generate.py: the hit rate on instruments
+and sensors unlike the generator's defaults.
 """
 import argparse
 import json
@@ -49,10 +53,11 @@ def main():
     parser.add_argument("out_dir")
     parser.add_argument("--seed", type=int, default=11)
     parser.add_argument("--case", action="append", choices=generate.CASES)
-    args = parser.parse_args()
+    args, instrument = parser.parse_known_args()
     cases = args.case or generate.CASES
     subprocess.run([sys.executable, os.path.join(HERE, "generate.py"), args.out_dir,
-                    "--seed", str(args.seed)] + sum((["--case", c] for c in cases), []), check=True)
+                    "--seed", str(args.seed)] + sum((["--case", c] for c in cases), []) + instrument,
+                   check=True)
     print("| hidden effect | named first | missing | also flagged | held-out RMS before -> with the truth added (mm) | cut | above the control | noise floor (mm) | above the noise |")
     print("|---|---|---|---|---|---|---|---|---|")
     hits, cuts, control, excess, beyond_noise = 0, [], None, [], []
