@@ -41,11 +41,11 @@ echo "== R3. diagnose: the real clamped beam of joint 1 against the paper's form
 $pliant identify --no-held-friction $real/jhu2017_bias_j1.csv $real/jhu2017_clamped_j1.csv \
   -o out/real_paper_form.json > /dev/null 2>&1
 $pliant diagnose --params out/real_paper_form.json $real/jhu2017_clamped_j1.csv \
-  -o out/real_diagnosis | sed -n -e '1,4p' -e '/candidate effects/,/^    3\./p'
+  -o out/real_diagnosis | sed -n -e '1,5p' -e '/candidate effects/,/^    3\./p'
 echo
 echo "== R4. diagnose: the same log against the identified file (its held friction in the model)"
 $pliant diagnose --params out/real.json $real/jhu2017_clamped_j1.csv \
-  -o out/real_diagnosis_identified | sed -n -e '1,4p' -e '/candidate effects/,/^    2\./p'
+  -o out/real_diagnosis_identified | sed -n -e '1,5p' -e '/candidate effects/,/^    2\./p'
 echo
 echo "== 1. identify: calibration logs -> out/identified.json"
 $pliant identify data/bias_sweep.csv data/clamped_beam.csv -o out/identified.json \
