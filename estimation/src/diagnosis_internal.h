@@ -361,8 +361,9 @@ std::array<bool, 2> Recorded(const io::Log& log);
 bool RefitTakeUpWithAdded(std::array<bool, 2> recorded, const std::vector<Term>& added,
                           BaseModel* model);
 /// The added effects then fitted with the take-up refitted from a
-/// clearance's (Recalibration::kNarrowTakeUp), and a note saying so.
-void FitAddedWithTheTakeUp(const BaseModel& model, Problem* problem);
+/// clearance's (Recalibration::kNarrowTakeUp), and a note saying so; false
+/// (nothing changed) when no recalibration was asked for.
+bool FitAddedWithTheTakeUp(const BaseModel& model, Problem* problem);
 /// Runs when a recorded joint's dead-zone width exceeds e × max(tau_min,
 /// 0.05 N·m) (the identification's prior on log w has sd 1): such a take-up
 /// may be a concave load-deflection curve absorbed. Say when the log cannot

@@ -176,13 +176,14 @@ bool RefitTakeUpWithAdded(std::array<bool, 2> recorded, const std::vector<Term>&
   return deflection && CompareInsideWideTakeUp(recorded, model);
 }
 
-void FitAddedWithTheTakeUp(const BaseModel& model, Problem* problem) {
-  if (problem->added_refit.empty()) return;  // no recalibration asked for
+bool FitAddedWithTheTakeUp(const BaseModel& model, Problem* problem) {
+  if (problem->added_refit.empty()) return false;  // no recalibration asked for
   problem->added_refit = {BaseRecalibrationTerm(model, Recalibration::kNarrowTakeUp)};
   problem->notes.push_back(
       "the parameters' take-up is wide: the added effects are fitted with it refitted from a "
       "clearance's (K's scale and tilt, δ, the width), on the loads from twice the clearance's "
       "take-up");
+  return true;
 }
 
 TakeUpProbe ProbeWideTakeUp(const io::Log& log, const std::string& log_path,

@@ -170,10 +170,8 @@ LogEffectFit FitEffectsOnLogs(const std::vector<NamedLog>& logs,
   problem.folds = std::min(std::max(2, options.folds), problem.groups);
   for (int g = 0; g < problem.groups; ++g) problem.fold_of_group.push_back(g % problem.folds);
   diagnosis::SetRecalibration(model, options.recalibrate_base, &problem);
-  if (take_up) {
-    diagnosis::FitAddedWithTheTakeUp(model, &problem);
+  if (take_up && diagnosis::FitAddedWithTheTakeUp(model, &problem))
     out.notes.push_back(problem.notes.back());
-  }
   std::vector<Term> fixed;
   out.fitted = diagnosis::FitAdded(problem, model, added, &fixed);
   out.samples = problem.samples.size();
