@@ -124,6 +124,22 @@ std::string Joined(const std::vector<std::string>& items) {
   return out;
 }
 
+// An effect the held rows did not inform: every parameter's σ is still above
+// its prior's/√2 (the data carried less information than the prior). The
+// parameters file then holds the prior, and the filter takes its σ as doubt;
+// the note names where the effect can be fitted.
+std::string UninformedNote(const EffectFinding& f, const Term& term) {
+  const auto specs = term.effect->Parameters();
+  for (std::size_t k = 0; k < specs.size() && k < f.parameter_sd.size(); ++k) {
+    if (!(f.parameter_sd[k] >= specs[k].prior_sd / std::sqrt(2.0))) return "";
+  }
+  return f.name + ": the held rows here do not inform it (every parameter's σ is above its "
+                  "prior's/√2), so it stays near its prior and the filter takes that σ as doubt; "
+                  "fit it on a log where what it reads (" + Joined(f.channels) +
+         ") varies under load, e.g. `pliant diagnose --params FILE LOG --add " + f.name +
+         " --write-params OUT.json`";
+}
+
 }  // namespace
 }  // namespace diagnosis
 
@@ -174,6 +190,10 @@ LogEffectFit FitEffectsOnLogs(const std::vector<NamedLog>& logs,
     out.notes.push_back(problem.notes.back());
   std::vector<Term> fixed;
   out.fitted = diagnosis::FitAdded(problem, model, added, &fixed);
+  for (std::size_t t = 0; t < added.size() && t < out.fitted.effects.size(); ++t) {
+    const std::string note = diagnosis::UninformedNote(out.fitted.effects[t], added[t]);
+    if (!note.empty()) out.notes.push_back(note);
+  }
   out.samples = problem.samples.size();
   out.segments = problem.groups;
   out.rms_given_mm = diagnosis::TipRmsMm(problem, diagnosis::CrossValidated(problem, model, {}, {}));

@@ -1,5 +1,7 @@
 #include "pliant/estimation/extra_effects.h"
 
+#include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 namespace pliant::estimation {
@@ -11,8 +13,10 @@ std::string SpecNames(const EffectModel& model) {
   return names;
 }
 
-// The file's values in the catalogue's order; every parameter must be there.
-std::vector<double> Ordered(const EffectModel& model, const models::EffectParameters& effect) {
+// The file's values (or, with `sd`, their σ: 0 where the file gives none) in
+// the catalogue's order; every parameter must be there.
+std::vector<double> Ordered(const EffectModel& model, const models::EffectParameters& effect,
+                            bool sd = false) {
   const auto specs = model.Parameters();
   if (effect.parameter_names.size() != specs.size()) {
     throw std::invalid_argument("effect '" + effect.name + "' needs exactly the parameters " +
@@ -26,7 +30,8 @@ std::vector<double> Ordered(const EffectModel& model, const models::EffectParame
       throw std::invalid_argument("effect '" + effect.name + "' lacks parameter '" + spec.name +
                                   "' (it needs " + SpecNames(model) + ")");
     }
-    values.push_back(effect.values[k]);
+    const bool stated = k < effect.sd.size() && std::isfinite(effect.sd[k]);
+    values.push_back(!sd ? effect.values[k] : stated ? std::abs(effect.sd[k]) : 0.0);
   }
   return values;
 }
@@ -37,11 +42,52 @@ ExtraEffects::ExtraEffects(const std::vector<models::EffectParameters>& effects)
   for (const auto& effect : effects) {
     models_.push_back(EffectCatalogue::Global().Create(effect.name));
     values_.push_back(Ordered(*models_.back(), effect));
+    sd_.push_back(Ordered(*models_.back(), effect, true));
+  }
+  Seed();
+}
+
+ExtraEffects::ExtraEffects(const ExtraEffects& other)
+    : values_(other.values_), sd_(other.sd_), seeded_(other.seeded_) {
+  for (const auto& m : other.models_) models_.push_back(m->Clone());
+}
+
+void ExtraEffects::Seed() {
+  seeded_.clear();
+  for (std::size_t k = 0; k < models_.size(); ++k) {
+    const std::size_t n = values_[k].size();
+    for (std::size_t first = 0; first < n; first += kEffectJetSize) {
+      const std::size_t last = std::min(n, first + kEffectJetSize);
+      const auto sd = sd_[k].begin();
+      if (std::all_of(sd + first, sd + last, [](double v) { return v == 0.0; })) continue;
+      SeededPass pass{k, first, {}};
+      for (std::size_t i = 0; i < n; ++i) {
+        pass.values.emplace_back(values_[k][i]);
+        if (i >= first && i < last) pass.values.back().v[i - first] = 1.0;
+      }
+      seeded_.push_back(std::move(pass));
+    }
   }
 }
 
-ExtraEffects::ExtraEffects(const ExtraEffects& other) : values_(other.values_) {
-  for (const auto& m : other.models_) models_.push_back(m->Clone());
+Eigen::Vector2d ExtraEffects::ConsideredVariance(const models::JointState<double>& state,
+                                                 models::Channel channel) const {
+  Eigen::Vector2d variance = Eigen::Vector2d::Zero();
+  if (seeded_.empty()) return variance;
+  const models::JointState<EffectJet> jets = state.Cast<EffectJet>();
+  for (const SeededPass& pass : seeded_) {
+    if (models_[pass.effect]->Info().channel != channel) continue;
+    const models::Vec2<EffectJet> out = models_[pass.effect]->Evaluate(pass.values.data(), jets);
+    const std::vector<double>& sd = sd_[pass.effect];
+    const std::size_t last = std::min(sd.size(), pass.first + kEffectJetSize);
+    for (std::size_t i = pass.first; i < last; ++i) {
+      for (int j = 0; j < 2; ++j) {
+        const double term = out[j].v[i - pass.first] * sd[i];
+        if (std::isfinite(term)) variance[j] += term * term;
+      }
+    }
+  }
+  return variance;
 }
 
 ExtraEffects& ExtraEffects::operator=(const ExtraEffects& other) {
@@ -49,6 +95,8 @@ ExtraEffects& ExtraEffects::operator=(const ExtraEffects& other) {
     ExtraEffects copy(other);
     models_ = std::move(copy.models_);
     values_ = std::move(copy.values_);
+    sd_ = std::move(copy.sd_);
+    seeded_ = std::move(copy.seeded_);
   }
   return *this;
 }

@@ -141,6 +141,7 @@ void ComplianceFilter::Impl::Reset() {
   window_sum = 0.0;
   effect_rows = EffectInputs(options.quasi_static, options.time_gap_s);
   extra_internal_torque_nm.setZero();
+  extra_internal_variance_nm2.setZero();
   held_given_contact = 0.5;
 }
 
@@ -182,7 +183,8 @@ void ComplianceFilter::Impl::Initialise(const FilterSample& sample, double depth
 // cross-covariance, so a coupling effect's ∂Δq_j/∂tau_i (i ≠ j) is not a row
 // entry: the other joint's tau enters at its estimate, a consider input whose
 // variance (∂Δq_j/∂tau_i)²·P_i(tau, tau) is added to the encoder's noise
-// (coupling_variance; 0 without a coupling effect).
+// (coupling_variance; 0 without a coupling effect), as is what the effects'
+// parameters' σ put there.
 void ComplianceFilter::Impl::EncoderModel(double depth_m, Eigen::Vector2d* predicted, Vector* h,
                                           Eigen::Vector2d* coupling_variance) const {
   models::JointState<StateJet> state;
@@ -201,12 +203,16 @@ void ComplianceFilter::Impl::EncoderModel(double depth_m, Eigen::Vector2d* predi
   coupling_variance->setZero();
   if (deflection_effects.empty()) return;
   const ExtraDeflection extra = Deflection();
+  // The effects' parameters' σ at the state's loads (ConsideredVariance).
+  models::JointState<double> inputs = effect_inputs;
+  for (int j = 0; j < 2; ++j) inputs.external_torque_nm[j] = joint[j].mean[kTorque];
+  *coupling_variance = extra_effects.ConsideredVariance(inputs, models::Channel::kDeflection);
   for (int j = 0; j < 2; ++j) {
     const int other = 1 - j;
     (*predicted)[j] += extra.value[j];
     h[j][kTorque] += extra.slope(j, j);
     const double cross = extra.slope(j, other);
-    (*coupling_variance)[j] = cross * cross * joint[other].covariance(kTorque, kTorque);
+    (*coupling_variance)[j] += cross * cross * joint[other].covariance(kTorque, kTorque);
   }
 }
 

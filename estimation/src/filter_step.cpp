@@ -62,6 +62,8 @@ void ComplianceFilter::Impl::ExtraInternalTorque(const FilterSample& sample) {
       sample.time_s, Eigen::Vector3d(sample.encoder_rad[0], sample.encoder_rad[1], depth),
       sample.effort_nm, sample.velocity_rad_s);
   extra_internal_torque_nm = extra_effects.InternalTorque(effect_inputs);
+  extra_internal_variance_nm2 =
+      extra_effects.ConsideredVariance(effect_inputs, models::Channel::kInternalTorque);
   for (int j = 0; j < 2; ++j) {
     if (!std::isfinite(extra_internal_torque_nm[j])) extra_internal_torque_nm[j] = 0.0;
   }
@@ -271,9 +273,10 @@ void ComplianceFilter::Impl::UpdateEffort(const FilterSample& sample, int j, boo
   // With the level on, σ_rest is the level's equilibrium (InternalTorque::Variance).
   const double settled = arm.level.on ? noise : rest;
   const double variance =
-      sample.tip_fixed ? HeldEffortVariance(options, inertial_torque)
-      : mixture        ? settled + moving * unmodelled[j].variance + arm.Variance()
-                       : noise;
+      extra_internal_variance_nm2[j] +
+      (sample.tip_fixed ? HeldEffortVariance(options, inertial_torque)
+       : mixture        ? settled + moving * unmodelled[j].variance + arm.Variance()
+                        : noise);
   const double residual =
       effort - tau0 - inertial - arm_torque - extra_internal_torque_nm[j] - s.mean[kOffset];
   double log_likelihood_ratio = 0.0, held_evidence = 0.0, level_weight = 0.0, free_variance = 0.0;

@@ -61,6 +61,7 @@ TEST(IdentifyEffect, RecoversTheHiddenCouplingAndCorrectsANewLogBetter) {
   ASSERT_EQ(with.exit_code, 0) << with.err;
   EXPECT_NE(with.out.find("deflection_coupling: k12 = "), std::string::npos) << with.out;
   EXPECT_NE(with.out.find("with the effects"), std::string::npos) << with.out;
+  EXPECT_EQ(with.out.find("do not inform it"), std::string::npos) << with.out;
 
   const auto written = io::ReadParameters((dir / "with.json").string());
   const auto* coupling = Find(written, "deflection_coupling");
@@ -90,6 +91,30 @@ TEST(IdentifyEffect, RecoversTheHiddenCouplingAndCorrectsANewLogBetter) {
   // model, joint 1 0.413 -> 0.198, joint 2 0.225 -> 0.040 mrad.
   ExpectLoadedErrorFalls(dir, kCli, "correct", "base.json", "with.json", 0.7);
   ExpectLoadedErrorFalls(dir, kCli, "filter", "base.json", "with.json", 0.7);
+}
+
+// The real JHU clamps hold one row per pose: no joint moves while the tip is
+// held, so nothing in them informs a friction. The file keeps its prior, and
+// the output says so and where it can be fitted (real data:
+// data/real/README.md).
+TEST(IdentifyEffect, AnEffectTheLogCannotInformIsSaidToStayAtItsPrior) {
+  const auto dir = FreshDirectory("identify_effect_uninformed");
+  const std::string real = kSource + "/data/real/";
+  const auto run = RunIn(dir, kCli + " identify " + real + "jhu2017_bias_j1.csv " + real +
+                                  "jhu2017_clamped_j1.csv --effect joint_friction -o p.json");
+  ASSERT_EQ(run.exit_code, 0) << run.err;
+  const std::string text = run.out + run.err;
+  EXPECT_NE(text.find("joint_friction: the held rows here do not inform it"), std::string::npos)
+      << text;
+  EXPECT_NE(text.find("--add joint_friction --write-params"), std::string::npos) << text;
+  const auto written = io::ReadParameters((dir / "p.json").string());
+  const auto* friction = Find(written, "joint_friction");
+  ASSERT_NE(friction, nullptr);
+  const auto& names = friction->parameter_names;
+  const auto k = std::find(names.begin(), names.end(), "coulomb1") - names.begin();
+  ASSERT_LT(std::size_t(k), names.size());
+  EXPECT_NEAR(friction->values[k], 0.0, 1e-9);  // at its prior's 0
+  EXPECT_GT(friction->sd[k], 0.05 / std::sqrt(2.0));
 }
 
 TEST(IdentifyEffect, AnUnknownNameExitsTwoAndWritesNothing) {

@@ -72,6 +72,15 @@ TEST(FilterRealTime, StepNeverAllocates) {
   // With motor inertia too: the alignment's held samples live in a ring
   // sized at construction.
   ComplianceFilter filter(p, o);
+  // With a file's effects and their σ (ConsideredVariance's Jets).
+  auto with_effects = p;
+  with_effects.effects = {
+      {"joint_friction",
+       {"viscous1", "viscous2", "coulomb1", "coulomb2", "velocity_scale"},
+       {0.1, 0.1, 0.05, 0.05, 0.005},
+       {0.01, 0.01, 0.01, 0.01, 0.001}},
+      {"deflection_coupling", {"k12", "k21"}, {0.006, 0.004}, {0.001, 0.001}}};
+  ComplianceFilter effects(with_effects, o);
   o.motor_inertia_kg_m2 = 0.08;
   ComplianceFilter aligned(p, o);
   ASSERT_GT(aligned.alignment_steps(), 0);
@@ -81,6 +90,7 @@ TEST(FilterRealTime, StepNeverAllocates) {
   std::uint32_t seen = 0;
   for (const auto& s : run.samples) seen |= filter.Step(s).flags;
   for (const auto& s : run.samples) aligned.Step(s);
+  for (const auto& s : run.samples) effects.Step(s);
   while (aligned.StepHeldSample()) {
   }
   counting = false;

@@ -36,6 +36,13 @@ class ExtraEffects {
   /// rad per joint: added to the encoder angle beyond the tip (state must
   /// carry the external torque).
   Eigen::Vector2d Deflection(const models::JointState<double>& state) const;
+  /// What the parameters' stated σ (the file's "sd") put into one channel's
+  /// sum at this row, per joint: Σ_k (∂f_j/∂p_k · σ_k)², the effects' own code
+  /// differentiated with EffectJet. A consumer that treats the parameters as
+  /// known adds it to that channel's noise (a consider parameter whose error is
+  /// taken as independent from row to row). 0 when every σ is 0. Never allocates.
+  Eigen::Vector2d ConsideredVariance(const models::JointState<double>& state,
+                                     models::Channel channel) const;
 
   /// Each effect with its parameter values, in the catalogue's order (for
   /// consumers that evaluate them with Jets, such as the filter).
@@ -45,6 +52,15 @@ class ExtraEffects {
  private:
   std::vector<std::unique_ptr<EffectModel>> models_;
   std::vector<std::vector<double>> values_;
+  std::vector<std::vector<double>> sd_;  // the file's σ, in the catalogue's order
+  // An effect's values as Jets, parameters first…first+7 seeded (one pass of
+  // ConsideredVariance); passes whose σ are all 0 are left out.
+  struct SeededPass {
+    std::size_t effect = 0, first = 0;
+    std::vector<EffectJet> values;
+  };
+  std::vector<SeededPass> seeded_;
+  void Seed();
 };
 
 }  // namespace pliant::estimation
