@@ -137,9 +137,12 @@ void BM_FilterStepContact(benchmark::State& state) {
 // encoder model's Jet through the catalogue code, and the other joint's load
 // as a consider input). What the file's deflection effects cost on top of
 // BM_FilterStep. (The log is the same: the cost, not the fit, is measured.)
+// Arg 1: with the σ an identification writes, which the filter considers
+// (ExtraEffects::ConsideredVariance: a Jet over the effect's parameters).
 void BM_FilterStepDeflection(benchmark::State& state) {
   auto parameters = pliant::models::testing::PaperParameters();
-  parameters.effects.push_back({"deflection_coupling", {"k12", "k21"}, {0.006, 0.004}, {0.0, 0.0}});
+  const double sd = state.range(0) ? 0.001 : 0.0;
+  parameters.effects.push_back({"deflection_coupling", {"k12", "k21"}, {0.006, 0.004}, {sd, sd}});
   pliant::estimation::ComplianceFilter filter(parameters);
   TimeSteps(state, [&](const FilterSample& s) { benchmark::DoNotOptimize(filter.Step(s)); });
 }
@@ -148,13 +151,14 @@ void BM_FilterStepDeflection(benchmark::State& state) {
 // real PSM2's friction fitted to the shared free-motion bag: docs/decisions/
 // contact-rates.md): the catalogue code evaluated at each row's velocity and
 // taken out of the effort. What the file's internal-torque effects cost on
-// top of BM_FilterStep.
+// top of BM_FilterStep; Arg 1: with σ, as BM_FilterStepDeflection.
 void BM_FilterStepFriction(benchmark::State& state) {
   auto parameters = pliant::models::testing::PaperParameters();
+  const double sd = state.range(0) ? 0.01 : 0.0;
   parameters.effects.push_back({"joint_friction",
                                 {"viscous1", "viscous2", "coulomb1", "coulomb2", "velocity_scale"},
                                 {0.12, 0.33, 0.15, 0.14, 0.05},
-                                {0.0, 0.0, 0.0, 0.0, 0.0}});
+                                {sd, sd, sd, sd, sd}});
   pliant::estimation::ComplianceFilter filter(parameters);
   TimeSteps(state, [&](const FilterSample& s) { benchmark::DoNotOptimize(filter.Step(s)); });
 }
@@ -199,8 +203,8 @@ BENCHMARK(BM_Equation2)->Iterations(2'000'000);
 BENCHMARK(BM_FilterStep)->Iterations(2'000'000);
 BENCHMARK(BM_FilterStepAligned)->Iterations(2'000'000);
 BENCHMARK(BM_FilterStepContact)->Iterations(2'000'000);
-BENCHMARK(BM_FilterStepFriction)->Iterations(2'000'000);
-BENCHMARK(BM_FilterStepDeflection)->Iterations(2'000'000);
+BENCHMARK(BM_FilterStepFriction)->Iterations(2'000'000)->Arg(0)->Arg(1);
+BENCHMARK(BM_FilterStepDeflection)->Iterations(2'000'000)->Arg(0)->Arg(1);
 BENCHMARK(BM_DenseFixedEkf)->Iterations(2'000'000);
 BENCHMARK(BM_DenseDynamicEkf)->Iterations(1'000'000);
 BENCHMARK(BM_Offline900k)->Iterations(1)->Unit(benchmark::kSecond);
