@@ -379,6 +379,9 @@ bool ComplianceFilter::advanced() const { return impl_->advanced; }
 const FilterSample& ComplianceFilter::state_sample() const { return impl_->state_sample; }
 const FilterEstimate& ComplianceFilter::state_estimate() const { return impl_->state_estimate; }
 const FilterOptions& ComplianceFilter::options() const { return impl_->options; }
+Eigen::Vector2d ComplianceFilter::instrument_prior_sd(int joint) const {
+  return {impl_->uncertainty[joint].clearance_sd_rad, impl_->options.compliance_scale_sd};
+}
 const FilterJointState& ComplianceFilter::joint_state(int joint) const {
   return impl_->joint[joint];
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <iomanip>
 #include <limits>
 #include <sstream>
@@ -114,6 +115,7 @@ class Tally {
     summary_->mismatch_rows += (e.flags & kFlagModelMismatch) != 0;
     nis_ += e.nis;
     dof_ += e.nis_dof;
+    last_ = e;
   }
 
   void Accuracy(const double* row, const FilterEstimate& e, TipErrorStatistics* stats,
@@ -129,12 +131,42 @@ class Tally {
 
   void Finish() { summary_->mean_nis_per_dof = dof_ > 0 ? nis_ / double(dof_) : 0.0; }
 
+  // The instrument's states are constants the file states with a σ: where
+  // one ends more than kDrift of them away, the log does not fit the file
+  // (another instrument, or an effect the model lacks) and the summary says so.
+  void InstrumentAdvice(const ComplianceFilter& filter, const FilterOptions& used) {
+    constexpr double kDrift = 3.0;
+    for (int j = 0; j < 2; ++j) {
+      if (!used.joint_recorded[j] || summary_->rows == 0) continue;
+      const Eigen::Vector2d sd = filter.instrument_prior_sd(j);
+      const double e = last_.clearance_error_rad[j], s = last_.compliance_scale[j] - 1.0;
+      char text[400];
+      if (sd[0] > 0.0 && std::abs(e) > kDrift * sd[0]) {
+        std::snprintf(text, sizeof text,
+                      "joint %d's clearance ended %+.2f mrad from the file's δ (%.0f σ of its "
+                      "%.2f mrad): this log does not fit the file — identify on this instrument, "
+                      "or look for an effect the model lacks (pliant diagnose)",
+                      j + 1, 1e3 * e, std::abs(e) / sd[0], 1e3 * sd[0]);
+        summary_->advice.emplace_back(text);
+      }
+      if (sd[1] > 0.0 && std::abs(s) > kDrift * sd[1]) {
+        std::snprintf(text, sizeof text,
+                      "joint %d's compliance scale ended at %.3f (%.0f σ of its %.2f from 1): "
+                      "the file's K is off on this log — identify on this instrument, or look "
+                      "for an effect the model lacks (pliant diagnose)",
+                      j + 1, 1.0 + s, std::abs(s) / sd[1], sd[1]);
+        summary_->advice.emplace_back(text);
+      }
+    }
+  }
+
  private:
   LogFilterSummary* summary_;
   const io::StandardColumns& in_;
   io::TipReference reference_;
   double nis_ = 0.0;
   double dof_ = 0.0;
+  FilterEstimate last_;
 };
 
 }  // namespace
@@ -234,6 +266,7 @@ LogFilterSummary SmoothLog(const std::string& input_path, const std::string& out
   }
   writer.Commit();
   tally.Finish();
+  tally.InstrumentAdvice(ComplianceFilter(parameters, used), used);
   return *summary;
 }
 
@@ -339,6 +372,7 @@ LogFilterSummary FilterLog(const std::string& input_path, const std::string& out
     writer.Commit();
     summary.skipped_rows = reader.skipped_rows();
     tally.Finish();
+    tally.InstrumentAdvice(filter, used);
     return summary;
   }
 

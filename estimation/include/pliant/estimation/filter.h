@@ -183,6 +183,9 @@ class ComplianceFilter {
   void Reset() noexcept;
 
   const FilterOptions& options() const;
+  /// The prior σ of joint j's clearance error e (rad) and compliance scale s:
+  /// how far the file's δ and K may be off before the log says so.
+  Eigen::Vector2d instrument_prior_sd(int joint) const;
   /// Joint j's (0 or 1) state after the last Step.
   const FilterJointState& joint_state(int joint) const;
   /// Joint j's transition in the last Step.
