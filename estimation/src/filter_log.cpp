@@ -134,11 +134,15 @@ class Tally {
   // The instrument's states are constants the file states with a σ: where
   // one ends more than kDrift of them away, the log does not fit the file
   // (another instrument, or an effect the model lacks) and the summary says so.
+  // A clearance is not told from one an encoder count away, whatever σ the
+  // identification gave it: the count is added to its σ in quadrature.
   void InstrumentAdvice(const ComplianceFilter& filter, const FilterOptions& used) {
     constexpr double kDrift = 3.0;
+    const double count_rad = std::sqrt(12.0) * used.encoder_noise_rad;
     for (int j = 0; j < 2; ++j) {
       if (!used.joint_recorded[j] || summary_->rows == 0) continue;
-      const Eigen::Vector2d sd = filter.instrument_prior_sd(j);
+      Eigen::Vector2d sd = filter.instrument_prior_sd(j);
+      sd[0] = std::hypot(sd[0], count_rad);
       const double e = last_.clearance_error_rad[j], s = last_.compliance_scale[j] - 1.0;
       char text[400];
       if (sd[0] > 0.0 && std::abs(e) > kDrift * sd[0]) {
