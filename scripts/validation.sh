@@ -13,7 +13,8 @@
 # given). --long adds the Monte Carlo studies of section 8, with 2 threads: divot 16 s,
 # known instrument 4 s, clamped 127-145 s, identify 401 s (each of its
 # 200 trials simulates and identifies a calibration), families 33 s (1.5 kHz), 8 s (100 Hz)
-# and 14 s (1.5 kHz without the hint), and the second generator's families (1 min).
+# and 14 s (1.5 kHz without the hint), and the second generator's hit rate (2.5 min), its loop
+# into corrected joints (7 min) and its families (1 min).
 #
 # The real-data score (section 3) needs clamped_cv.py (docs/real-data.md); set CLAMPED_CV
 # to its path if it is not at /work/shared/tools/clamped_cv.py. Without it that step is
@@ -197,6 +198,9 @@ if [ $long -eq 1 ]; then
       --threads 2 --no-plots
     echo "  ($((SECONDS - t0)) s)"
   done
+  section "10. Diagnosis on the second generator's logs, and the loop into corrected joints (--long)"
+  show /usr/bin/python3 experiments/second_generator/hit_rate.py "$pliant" "$work/hit_rate"
+  show /usr/bin/python3 experiments/second_generator/effect_loop.py "$pliant" "$work/loop"
   section "12. The filter on second-generator families unlike the defaults (--long)"
   show /usr/bin/python3 experiments/second_generator/filter_families.py "$pliant" "$work/families"
   echo
