@@ -139,8 +139,10 @@ def filter_log(params, log, output=None, smooth=False, skip_bad_rows=False, **op
     Adds q1_corr, q2_corr (rad), q1_sd, q2_sd (rad), q12_cov (rad²),
     tip_corr_mm, tip_corr_sd_mm (mm), nis and flags (FLAG_* bits). params,
     log and output as in correct_log; options as pliant.Filter's. Returns
-    (Log, summary): rows, flagged rows, mean_nis_per_dof, and the tip error
-    (mm) uncorrected, filtered (and smoothed_error) against the reference.
+    (Log, summary): rows, flagged rows, mean_nis_per_dof, the tip error (mm)
+    uncorrected, filtered (and smoothed_error) against the reference, notes
+    (what the log's header changed) and advice (what the summary prints beside
+    them, e.g. an instrument state ended beyond 3 σ of the file's).
     """
     parameters, name = _parameters(params)
     note = "pliant filter, parameters " + name

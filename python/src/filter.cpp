@@ -66,6 +66,7 @@ py::dict FilterFile(const Parameters& parameters, const std::string& input,
   out["saturated_rows"] = s.saturated_rows, out["mismatch_rows"] = s.mismatch_rows;
   out["smoothed"] = s.smoothed, out["reference"] = s.reference;
   out["mean_nis_per_dof"] = s.mean_nis_per_dof;
+  out["notes"] = s.notes, out["advice"] = s.advice;
   out["uncorrected"] = TipErrorDict(s.uncorrected);
   out["filtered"] = TipErrorDict(s.filtered);
   if (s.smoothed) out["smoothed_error"] = TipErrorDict(s.smoothed_error);

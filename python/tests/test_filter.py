@@ -2,6 +2,7 @@
 sample at a time (the same numbers, to the last digit)."""
 
 import math
+import os
 
 import numpy as np
 import pytest
@@ -29,6 +30,16 @@ def test_filter_log_writes_the_commands_file(cli_filtered, tmp_path):
     assert f"rejected {summary['rejected_rows']}," in stdout
     # The filter beats equation (2)'s error on this log by far (docs/filter.md).
     assert summary["filtered"]["rms_mm"] < 0.5 * summary["uncorrected"]["rms_mm"]
+
+
+def test_the_summary_says_when_the_file_does_not_fit_the_log(tmp_path):
+    # The real JHU clamps with another arm's parameters: the clearance ends 8 σ
+    # from the file's δ (docs/decisions/instrument-drift-advice.md).
+    real = data(os.path.join("real", "jhu2017_clamped_j1.csv"))
+    _, summary = pliant.filter_log(PARAMS, real, output=tmp_path / "out.csv")
+    assert any(a.startswith("joint 1's clearance ended") for a in summary["advice"])
+    _, shipped = pliant.filter_log(PARAMS, LOG, output=tmp_path / "shipped.csv")
+    assert not any("ended" in a for a in shipped["advice"])
 
 
 @pytest.mark.parametrize("flags, options", [
