@@ -47,6 +47,14 @@ const std::pair<const char*, Field> kFields[] = {
     {"learn_contact_rates", &FilterOptions::learn_contact_rates},
     {"contact_rate_memory_s", &FilterOptions::contact_rate_memory_s},
     {"free_level", &FilterOptions::free_level},  // (docs/decisions/contact-free-level.md)
+    // What the effort holds besides a load while the arm moves (its priors).
+    {"contact_load_sd_nm", &FilterOptions::contact_load_sd_nm},
+    {"unmodelled_effort_sd_nm", &FilterOptions::unmodelled_effort_sd_nm},
+    {"moving_effort_sd_nm", &FilterOptions::moving_effort_sd_nm},
+    {"unmodelled_effort_speed_rad_s", &FilterOptions::unmodelled_effort_speed_rad_s},
+    {"internal_coulomb_sd_nm", &FilterOptions::internal_coulomb_sd_nm},
+    {"internal_viscous_sd_nm_s", &FilterOptions::internal_viscous_sd_nm_s},
+    {"internal_inertia_sd_kg_m2", &FilterOptions::internal_inertia_sd_kg_m2},
 };
 
 std::string Names() {
