@@ -115,7 +115,8 @@ class Tally {
     summary_->mismatch_rows += (e.flags & kFlagModelMismatch) != 0;
     nis_ += e.nis;
     dof_ += e.nis_dof;
-    last_ = e;
+    clearance_error_rad_ = e.clearance_error_rad;  // the instrument's states, as they end
+    compliance_scale_ = e.compliance_scale;
   }
 
   void Accuracy(const double* row, const FilterEstimate& e, TipErrorStatistics* stats,
@@ -143,7 +144,7 @@ class Tally {
       if (!used.joint_recorded[j] || summary_->rows == 0) continue;
       Eigen::Vector2d sd = filter.instrument_prior_sd(j);
       sd[0] = std::hypot(sd[0], count_rad);
-      const double e = last_.clearance_error_rad[j], s = last_.compliance_scale[j] - 1.0;
+      const double e = clearance_error_rad_[j], s = compliance_scale_[j] - 1.0;
       char text[400];
       if (sd[0] > 0.0 && std::abs(e) > kDrift * sd[0]) {
         std::snprintf(text, sizeof text,
@@ -170,7 +171,7 @@ class Tally {
   io::TipReference reference_;
   double nis_ = 0.0;
   double dof_ = 0.0;
-  FilterEstimate last_;
+  Eigen::Vector2d clearance_error_rad_{0.0, 0.0}, compliance_scale_{1.0, 1.0};
 };
 
 }  // namespace
