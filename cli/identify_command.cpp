@@ -10,11 +10,13 @@
 #include <vector>
 
 #include "commands.h"
+#include "identify_effects.h"
 #include "identify_figures.h"
 #include "pliant/estimation/effect_catalogue.h"
 #include "pliant/estimation/effect_fit.h"
 #include "pliant/estimation/effect_inputs.h"
 #include "pliant/estimation/extra_effects.h"
+#include "pliant/estimation/free_motion_fit.h"
 #include "pliant/estimation/identification_quasi_static.h"
 #include "pliant/estimation/identification_report.h"
 #include "pliant/estimation/joint_smoother.h"
@@ -79,13 +81,6 @@ void DrawFigure(const estimation::IdentificationResult& r, const std::string& pa
   experiments::WriteFigure(figure, path);
 }
 
-// The logs, as an error message names them all (the fit reads them together).
-std::string JoinedPaths(const std::vector<std::string>& logs) {
-  std::string files;
-  for (const auto& log : logs) files += (files.empty() ? "" : ", ") + log;
-  return files;
-}
-
 // Parameters the smoother cannot make usable (K outside its physical band, a
 // cubic crossing zero) come from logs that do not determine them: bad input
 // (exit 2), with what to record instead.
@@ -133,7 +128,13 @@ void RequireBiasSweep(const estimation::IdentificationData& data,
 
 // Checked before any log is read, so a typo costs nothing.
 void CheckEffectNames(const std::vector<std::string>& names) {
-  const auto candidates = estimation::CandidateEffectNames();
+  // The diagnosis's candidates and the arm's dynamics (fitted from free motion).
+  auto candidates = estimation::CandidateEffectNames();
+  for (const auto& name : estimation::EffectCatalogue::Global().Names()) {
+    if (estimation::FittedFromFreeMotion(name) &&
+        std::find(candidates.begin(), candidates.end(), name) == candidates.end())
+      candidates.push_back(name);
+  }
   std::string known;
   for (const auto& k : candidates) known += (known.empty() ? "" : ", ") + k;
   for (std::size_t i = 0; i < names.size(); ++i) {
@@ -146,22 +147,6 @@ void CheckEffectNames(const std::vector<std::string>& names) {
     if (std::find(names.begin(), names.begin() + long(i), names[i]) != names.begin() + long(i))
       throw io::InputError(option, 0, 0, "is given twice", "give each effect once: it is fitted once");
   }
-}
-
-// The named effects fitted on the held-tip rows, jointly with each joint's
-// compliance scale and clearance, into the identified parameters (the fit
-// pliant diagnose --add makes: pliant/estimation/effect_fit.h).
-std::optional<estimation::LogEffectFit> FitEffects(const IdentifyOptions& options,
-                                                   const std::vector<io::Log>& logs,
-                                                   estimation::IdentificationResult* result) {
-  if (options.effects.empty()) return std::nullopt;
-  io::Progress progress("pliant identify: fitting " + JoinedPaths(options.effects));
-  std::vector<estimation::NamedLog> named;
-  for (std::size_t i = 0; i < logs.size(); ++i) named.push_back({&logs[i], options.logs[i]});
-  auto fit = estimation::FitEffectsOnLogs(named, result->parameters, options.effects, {});
-  result->parameters = estimation::WithFittedEffects(result->parameters, fit.fitted,
-                                                     "pliant identify on " + JoinedPaths(fit.logs));
-  return fit;
 }
 
 // The parameters with only the effects named by --effect: what the second
@@ -183,46 +168,6 @@ bool ReadsTheEffort(const models::ModelParameters& parameters) {
   return std::any_of(effects.models().begin(), effects.models().end(), [](const auto& m) {
     return m->Info().channel == models::Channel::kInternalTorque;
   });
-}
-
-std::string EffectsText(const estimation::LogEffectFit& fit) {
-  char line[320];
-  std::snprintf(line, sizeof line,
-                "  effects fitted on the held tip of %s (%zu samples, %d segments), with each "
-                "joint's compliance scale and clearance:\n",
-                JoinedPaths(fit.logs).c_str(), fit.samples, fit.segments);
-  std::string text = line;
-  for (const auto& e : fit.fitted.effects) {
-    text += "    " + e.name + ":";
-    for (std::size_t k = 0; k < e.parameters.size(); ++k) {
-      std::snprintf(line, sizeof line, " %s = %.4g ± %.2g", e.parameter_names[k].c_str(),
-                    e.parameters[k], k < e.parameter_sd.size() ? e.parameter_sd[k] : 0.0);
-      text += line;
-    }
-    text += "\n";
-  }
-  std::snprintf(line, sizeof line,
-                "    held-out RMS error at the tip: %.3f mm as identified, %.3f mm with K and δ "
-                "refitted, %.3f mm with the effects\n",
-                fit.rms_given_mm, fit.rms_refit_mm, fit.rms_with_effects_mm);
-  text += line;
-  for (const auto& note : fit.notes) text += "    note: " + note + "\n";
-  return text;
-}
-
-nlohmann::json EffectsJson(const estimation::LogEffectFit& fit) {
-  nlohmann::json effects = nlohmann::json::array();
-  for (const auto& e : fit.fitted.effects) {
-    nlohmann::json parameters = nlohmann::json::array();
-    for (std::size_t k = 0; k < e.parameters.size(); ++k)
-      parameters.push_back({{"name", e.parameter_names[k]}, {"value", e.parameters[k]},
-                            {"sd", k < e.parameter_sd.size() ? e.parameter_sd[k] : 0.0}});
-    effects.push_back({{"name", e.name}, {"parameters", parameters}});
-  }
-  return {{"logs", fit.logs}, {"samples", fit.samples}, {"segments", fit.segments},
-          {"effects", effects}, {"heldout_rms_given_mm", fit.rms_given_mm},
-          {"heldout_rms_refit_mm", fit.rms_refit_mm},
-          {"heldout_rms_with_effects_mm", fit.rms_with_effects_mm}, {"notes", fit.notes}};
 }
 
 // The fit, with its progress (elapsed time: Ceres gives no share done).
@@ -280,10 +225,11 @@ void RunIdentify(const IdentifyOptions& options) {
   result.parameters.description = "identified by pliant identify (" + result.method + ", " +
                                    options.law + ") from " + std::to_string(options.logs.size()) +
                                    " log(s)";
-  auto effects = FitEffects(options, logs, &result);
-  const models::ModelParameters named =
-      effects ? WithOnlyTheNamed(result.parameters, options.effects) : models::ModelParameters{};
-  if (effects && ReadsTheEffort(named)) {
+  EffectFits effects = FitEffects(options.effects, logs, options.logs, &result);
+  const models::ModelParameters named = effects.any()
+                                            ? WithOnlyTheNamed(result.parameters, options.effects)
+                                            : models::ModelParameters{};
+  if (effects.any() && ReadsTheEffort(named)) {
     // An internal-torque effect was in the efforts the base fit read: its
     // bias table took up what the effect puts there at the calibration's
     // poses, which the effect beside it would then count twice. Once more:
@@ -296,7 +242,7 @@ void RunIdentify(const IdentifyOptions& options) {
     const std::string description = result.parameters.description;
     result = Fit(options, method, without, prior);
     result.parameters.description = description;
-    effects = FitEffects(options, logs, &result);
+    effects = FitEffects(options.effects, logs, options.logs, &result);
     data = std::move(without);  // (the report and the figures show what the base read)
   }
   io::WriteParameters(options.output_path, result.parameters);
@@ -305,12 +251,12 @@ void RunIdentify(const IdentifyOptions& options) {
   if (options.json) {
     auto json = estimation::IdentificationJson(result, data, laws);
     json["output"] = options.output_path;
-    if (effects) json["effects_fit"] = EffectsJson(*effects);
+    AddEffectFitsJson(effects, &json);
     std::fprintf(out, "%s\n", json.dump(2).c_str());
   } else {
     std::fprintf(out, "pliant identify: %s%s",
                  estimation::IdentificationTable(result, data, laws).c_str(),
-                 effects ? EffectsText(*effects).c_str() : "");
+                 EffectFitsText(effects).c_str());
     std::fprintf(out, "  wrote %s\n", options.output_path.c_str());
   }
   for (const auto& w : result.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
@@ -350,9 +296,10 @@ Command AddIdentifyCommand(CLI::App& app) {
   sub->add_flag("--no-held-friction", options->no_held_friction,
                 "quasi_static: fit the paper's form only (no held_friction effect)");
   sub->add_option("--effect", options->effects,
-                  "Catalogue effect to fit after the base model, on the held-tip rows with each "
-                  "joint's K scale and clearance, into the file's effects (repeatable; "
-                  "docs/effects.md)");
+                  "Catalogue effect to fit after the base model, into the file's effects: the "
+                  "arm's dynamics (joint_inertia, joint_friction) on the logs' free motion, "
+                  "others on the held-tip rows with each joint's K scale and clearance "
+                  "(repeatable; docs/effects.md)");
   sub->add_flag("--json", options->json, "Print the results as JSON");
   sub->add_flag("--skip-bad-rows", options->skip_bad_rows,
                 "Drop and count rows with NaN/Inf/empty required values instead of stopping");

@@ -10,6 +10,7 @@ inside its 95 % interval, its median σ, equation (2)'s RMS error and the median
 probability.
 
 Usage: online_onset.py PLIANT OUT_DIR [--seed N] [--peak NM] [--speed RAD_S] [--noise NM]
+                       [--params FILE]
 (a few seconds)
 """
 import argparse
@@ -35,10 +36,12 @@ def main():
     parser.add_argument("--peak", type=float, default=0.35)
     parser.add_argument("--speed", type=float, default=0.045)
     parser.add_argument("--noise", type=float, default=0.025)
+    parser.add_argument("--params", default=os.path.join(REPO, "data", "paper.json"),
+                        help="parameters for both commands (default: the true ones, data/paper.json)")
     args = parser.parse_args()
     os.makedirs(args.out_dir, exist_ok=True)
     path = lambda name: os.path.join(args.out_dir, name)
-    params = os.path.join(REPO, "data", "paper.json")
+    params = args.params
     sets = ["hidden_effects={}", "experiment.hold_s=0.5", "experiment.rest_s=0.2",
             "experiment.depths_m=[0.15]", "experiment.peak_torques_nm=[%g]" % args.peak,
             "experiment.speeds_rad_s=[%g]" % args.speed,

@@ -201,9 +201,11 @@ std::vector<std::string> CandidateEffectNames() {
   static const std::set<std::string> kBaseModel = {"bias_torque",       "compliance",
                                                    "backlash_sign",     "backlash_deadzone",
                                                    "backlash_hysteresis", "bias_torque_fourier"};
+  // Fitted from free motion (identify --effect): a held tip hardly accelerates.
+  static const std::set<std::string> kFreeMotion = {"joint_inertia"};
   std::vector<std::string> names;
   for (const auto& name : EffectCatalogue::Global().Names()) {
-    if (!kBaseModel.count(name)) names.push_back(name);
+    if (!kBaseModel.count(name) && !kFreeMotion.count(name)) names.push_back(name);
   }
   return names;
 }

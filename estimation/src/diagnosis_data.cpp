@@ -121,14 +121,14 @@ models::JointState<double> StreamRow(const io::Log& log, const io::StandardColum
   for (int j = 0; j < 2; ++j) {
     if (problem.joint_recorded[j]) continue;
     state.encoder_angle_rad[j] = state.velocity_rad_s[j] = state.effort_rate_nm_s[j] = 0.0;
-    state.travel_since_reversal_rad[j] = 0.0;
+    state.travel_since_reversal_rad[j] = state.acceleration_rad_s2[j] = 0.0;
   }
   return state;
 }
 
 struct RowInputs {
   double effort_rate_window_s = 0.1;
-  std::vector<Eigen::Vector2d> centred_rate;  // empty for a quasi-static log
+  std::vector<Eigen::Vector2d> centred_rate, centred_acceleration;  // empty: quasi-static
   int ref[2] = {-1, -1};
 };
 
@@ -166,7 +166,10 @@ std::vector<Sample> CollectSamples(const io::Log& log, const io::StandardColumns
     // An unrecorded joint stays at rest at 0 (its prior): nothing is read from it.
     for (int j = 0; j < 2; ++j) {
       if (!problem.joint_recorded[j]) continue;
-      if (!in.centred_rate.empty()) s.state.effort_rate_nm_s[j] = in.centred_rate[r][j];
+      if (!in.centred_rate.empty()) {
+        s.state.effort_rate_nm_s[j] = in.centred_rate[r][j];
+        s.state.acceleration_rad_s2[j] = in.centred_acceleration[r][j];
+      }
       effort[j] = log.Value(r, tau[j]);
       if (!problem.profile_tip) s.reference_rad[j] = log.Value(r, in.ref[j]);
     }
@@ -241,8 +244,10 @@ Problem BuildProblem(const io::Log& log, const std::string& log_path, const Base
   const bool quasi_static = log.header.QuasiStatic();
   problem.quasi_static = quasi_static;
   in.effort_rate_window_s = options.effort_rate_window_s;
-  if (!quasi_static)
+  if (!quasi_static) {
     in.centred_rate = CentredEffortRates(log, options.effort_rate_window_s, kTimeGapS);
+    in.centred_acceleration = CentredAccelerations(log, options.effort_rate_window_s, kTimeGapS);
+  }
   if (quasi_static) {
     problem.notes.push_back("the log holds quasi-static means (# timing: quasi-static): no "
                             "velocity or effort rate is read from its t, so friction and an "

@@ -16,6 +16,7 @@
 #include "pliant/models/effects/effort_drift.h"
 #include "pliant/models/effects/held_friction.h"
 #include "pliant/models/effects/joint_friction.h"
+#include "pliant/models/effects/joint_inertia.h"
 #include "pliant/models/effects/load_dependent_compliance.h"
 
 namespace pliant::estimation {
@@ -56,6 +57,8 @@ EffectCatalogue& EffectCatalogue::Global() {
     c->Add<models::EffortDelayEffect>();
     // Found in the real clamped-beam data (docs/real-data.md).
     c->Add<models::HeldFrictionEffect>();
+    // Fitted from free motion (identify --effect on a log without a held tip).
+    c->Add<models::JointInertiaEffect>();
     return c;
   }();
   return *catalogue;

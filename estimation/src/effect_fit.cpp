@@ -25,7 +25,7 @@ Term MakeTerm(const std::string& name) {
 std::vector<std::string> ChannelsOf(const EffectModel& effect) {
   static const char* kLogName[models::kJointStateSize] = {
       "q1", "q2", "q3", "tau1", "tau2", "v1", "v2", "t", "dtau1/dt", "dtau2/dt",
-      "travel1", "travel2"};
+      "travel1", "travel2", "d2q1/dt2", "d2q2/dt2"};
   std::vector<double> parameters;
   for (const auto& spec : effect.Parameters()) {
     const double moved = spec.default_value + spec.prior_sd;
@@ -41,6 +41,7 @@ std::vector<std::string> ChannelsOf(const EffectModel& effect) {
     state.time_s = 12.5;
     state.effort_rate_nm_s << 0.4, -0.7;
     state.travel_since_reversal_rad << 0.003, -0.001;
+    state.acceleration_rad_s2 << 0.3, -0.2;
     const auto check = CheckEffectJacobians(effect, parameters, state);
     for (int k = 0; k < models::kJointStateSize; ++k)
       used[k] = used[k] || check.autodiff.col(Eigen::Index(parameters.size()) + k).cwiseAbs().maxCoeff() > 0.0;

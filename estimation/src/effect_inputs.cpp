@@ -29,16 +29,21 @@ const models::JointState<double>& EffectInputs::Update(double time_s, const Eige
   last_time_ = time_s;
   last_angle_ = q.head<2>();
   state_.effort_rate_nm_s.setZero();
+  state_.acceleration_rad_s2.setZero();
   if (pose) {  // the rate's window starts again after a gap
     count_ = 0;
     Resum();
   }
   if (quasi_static_ || !std::isfinite(time_s)) return state_;
-  AddEffort(time_s, effort_nm);
-  // The least-squares slope of the window's efforts against time.
+  AddEffort(time_s, effort_nm, state_.velocity_rad_s);
+  // The least-squares slopes of the window's efforts and velocities against time.
   const double denominator = n_ * stt_ - st_ * st_;
   if (n_ >= 3.0 && denominator > 0.0) {
-    for (int j = 0; j < 2; ++j) state_.effort_rate_nm_s[j] = (n_ * sty_[j] - st_ * sy_[j]) / denominator;
+    const auto slope = [&](int k) { return (n_ * sty_[k] - st_ * sy_[k]) / denominator; };
+    for (int j = 0; j < 2; ++j) {
+      state_.effort_rate_nm_s[j] = slope(j);
+      state_.acceleration_rad_s2[j] = slope(2 + j);
+    }
   }
   return state_;
 }
@@ -53,7 +58,8 @@ const models::JointState<double>& EffectInputs::Update(const io::StandardColumns
                 Eigen::Vector2d(value(c.v1), value(c.v2)));
 }
 
-void EffectInputs::AddEffort(double time_s, const Eigen::Vector2d& measured_nm) {
+void EffectInputs::AddEffort(double time_s, const Eigen::Vector2d& measured_nm,
+                             const Eigen::Vector2d& velocity_rad_s) {
   // Time going back (another log, a restart) or no effort at all: start again.
   const bool back = count_ > 0 && time_s < time_[(oldest_ + count_ - 1) % kRing];
   const bool none = !std::isfinite(measured_nm[0]) && !std::isfinite(measured_nm[1]);
@@ -73,8 +79,10 @@ void EffectInputs::AddEffort(double time_s, const Eigen::Vector2d& measured_nm) 
   if (count_ == kRing) DropOldest();  // the ring is full
   const int slot = (oldest_ + count_) % kRing;
   time_[slot] = time_s;
-  effort_[0][slot] = effort_nm[0];
-  effort_[1][slot] = effort_nm[1];
+  for (int j = 0; j < 2; ++j) {
+    value_[j][slot] = effort_nm[j];
+    value_[2 + j][slot] = velocity_rad_s[j];
+  }
   ++count_;
   Sum(slot, 1.0);
   while (count_ > 1 && time_[oldest_] < time_s - window_s_) DropOldest();
@@ -91,9 +99,9 @@ void EffectInputs::DropOldest() {
 void EffectInputs::Sum(int slot, double sign) {
   const double t = time_[slot] - anchor_s_;
   n_ += sign, st_ += sign * t, stt_ += sign * t * t;
-  for (int j = 0; j < 2; ++j) {
-    sy_[j] += sign * effort_[j][slot];
-    sty_[j] += sign * t * effort_[j][slot];
+  for (int k = 0; k < kChannels; ++k) {
+    sy_[k] += sign * value_[k][slot];
+    sty_[k] += sign * t * value_[k][slot];
   }
 }
 
@@ -102,7 +110,7 @@ void EffectInputs::Resum() {
   since_resum_ = 0;
   anchor_s_ = count_ > 0 ? time_[oldest_] : 0.0;
   n_ = st_ = stt_ = 0.0;
-  sy_[0] = sy_[1] = sty_[0] = sty_[1] = 0.0;
+  for (int k = 0; k < kChannels; ++k) sy_[k] = sty_[k] = 0.0;
   for (int k = 0; k < count_; ++k) Sum((oldest_ + k) % kRing, 1.0);
 }
 
@@ -110,8 +118,10 @@ void EffectInputs::Resum() {
 // last row of the same stretch (no gap) no later than t + w/2: the fit has the
 // whole log, and the centred line finds an effort delay's physical value where
 // the trailing one, w/2 late, finds less (decision record effect-inputs.md).
-std::vector<Eigen::Vector2d> CentredEffortRates(const io::Log& log, double window_s,
-                                                double max_step_s) {
+namespace {
+
+std::vector<Eigen::Vector2d> Centred(const io::Log& log, double window_s, double max_step_s,
+                                     Eigen::Vector2d models::JointState<double>::*input) {
   const std::size_t n = log.Rows();
   std::vector<Eigen::Vector2d> trailing(n), centred(n, Eigen::Vector2d::Zero());
   if (log.header.QuasiStatic()) return centred;
@@ -119,7 +129,7 @@ std::vector<Eigen::Vector2d> CentredEffortRates(const io::Log& log, double windo
   std::vector<bool> starts(n, true);  // the first row of a stretch
   EffectInputs tracker(false, max_step_s, window_s);
   for (std::size_t r = 0; r < n; ++r) {
-    trailing[r] = tracker.Update(c, &log.values[r * log.Columns()]).effort_rate_nm_s;
+    trailing[r] = tracker.Update(c, &log.values[r * log.Columns()]).*input;
     const double dt = r > 0 ? log.Value(r, c.t) - log.Value(r - 1, c.t) : -1.0;
     starts[r] = !(dt >= 0.0 && dt <= max_step_s);
   }
@@ -133,17 +143,31 @@ std::vector<Eigen::Vector2d> CentredEffortRates(const io::Log& log, double windo
   return centred;
 }
 
+}  // namespace
+
+std::vector<Eigen::Vector2d> CentredEffortRates(const io::Log& log, double window_s,
+                                                double max_step_s) {
+  return Centred(log, window_s, max_step_s, &models::JointState<double>::effort_rate_nm_s);
+}
+
+std::vector<Eigen::Vector2d> CentredAccelerations(const io::Log& log, double window_s,
+                                                  double max_step_s) {
+  return Centred(log, window_s, max_step_s, &models::JointState<double>::acceleration_rad_s2);
+}
+
 io::Log WithoutInternalTorque(const io::Log& log, const models::ModelParameters& parameters) {
   io::Log out = log;
   const ExtraEffects effects(parameters.effects);
   if (effects.empty()) return out;
   const io::StandardColumns c(log.header);
   EffectInputs inputs(log.header.QuasiStatic());
-  // As the effects were fitted beside it: the effort's rate centred.
+  // As the effects were fitted beside it: the effort's rate and the acceleration centred.
   const std::vector<Eigen::Vector2d> rate = CentredEffortRates(log);
+  const std::vector<Eigen::Vector2d> acceleration = CentredAccelerations(log);
   for (std::size_t r = 0; r < log.Rows(); ++r) {
     models::JointState<double> state = inputs.Update(c, &log.values[r * log.Columns()]);
     state.effort_rate_nm_s = rate[r];
+    state.acceleration_rad_s2 = acceleration[r];
     const Eigen::Vector2d internal = effects.InternalTorque(state);
     const int tau[2] = {c.tau1, c.tau2};
     for (int j = 0; j < 2; ++j) {

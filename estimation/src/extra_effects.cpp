@@ -101,6 +101,14 @@ ExtraEffects& ExtraEffects::operator=(const ExtraEffects& other) {
   return *this;
 }
 
+void ExtraEffects::DropConsidered(const std::vector<std::string>& names) {
+  for (std::size_t k = 0; k < models_.size(); ++k) {
+    if (std::find(names.begin(), names.end(), models_[k]->Info().name) != names.end())
+      std::fill(sd_[k].begin(), sd_[k].end(), 0.0);
+  }
+  Seed();
+}
+
 std::vector<std::string> ExtraEffects::Names() const {
   std::vector<std::string> names;
   for (const auto& m : models_) names.emplace_back(m->Info().name);

@@ -15,6 +15,8 @@
 #include "filter_impl.h"
 #include "pliant/models/effects/backlash_hysteresis.h"
 #include "pliant/models/effects/compliance.h"
+#include "pliant/models/effects/joint_friction.h"
+#include "pliant/models/effects/joint_inertia.h"
 #include "pliant/models/effects/shaft_damping.h"
 
 namespace pliant::estimation {
@@ -60,6 +62,12 @@ ComplianceFilter::Impl::Impl(const models::ModelParameters& p, const FilterOptio
   options.deflection_model_error = o.DeflectionModelError();  // NaN resolved once
   // A quasi-static log has no dynamics to read: no inertial torque, no damping.
   if (o.quasi_static) options.motor_inertia_kg_m2 = options.shaft_damping_nm_s_per_rad = 0.0;
+  // The arm's dynamics the file states are the learned torque's prior
+  // (ArmPriorSd): their σ is its doubt there, not the effort's noise as well.
+  if (o.infer_contact && !o.quasi_static) {
+    extra_effects.DropConsidered({std::string(models::JointFrictionEffect::kInfo.name),
+                                  std::string(models::JointInertiaEffect::kInfo.name)});
+  }
   for (int j = 0; j < 2; ++j) {
     const auto& joint_parameters = p.joints[j];
     for (int i = 0; i < 4; ++i) {
@@ -127,7 +135,7 @@ void ComplianceFilter::Impl::Reset() {
     pair_window[j] = filter_internal::PairWindow{};
     free_motion[j] = filter_internal::FreeArmMotion{};
     unmodelled[j].variance = options.moving_effort_sd_nm * options.moving_effort_sd_nm;
-    internal_torque[j].Start(options);
+    internal_torque[j].Start(options, ArmPriorSd(options, parameters.effects, j));
     pending[j] = filter_internal::PendingEffort{};  // (its pose and stillness feed the free level)
   }
   std::fill(window_nis.begin(), window_nis.end(), 0.0);

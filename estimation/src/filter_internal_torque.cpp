@@ -8,15 +8,15 @@
 #include <ceres/jet.h>
 
 #include "pliant/models/effects/joint_friction.h"
+#include "pliant/models/effects/joint_inertia.h"
 
 namespace pliant::estimation::filter_internal {
 
-void InternalTorque::Start(const FilterOptions& o) {
+void InternalTorque::Start(const FilterOptions& o, const Eigen::Vector3d& motion_sd) {
   coefficients.setZero();
   regressor.setZero();
   information_mean.setZero();
-  const Vector4 sd(o.internal_inertia_sd_kg_m2, o.internal_coulomb_sd_nm,
-                   o.internal_viscous_sd_nm_s, o.internal_bias_error_sd_nm);
+  const Vector4 sd(motion_sd[0], motion_sd[1], motion_sd[2], o.internal_bias_error_sd_nm);
   prior_information = sd.cwiseProduct(sd).cwiseInverse().asDiagonal();
   information = prior_information;
   covariance = sd.cwiseProduct(sd).asDiagonal();
@@ -35,6 +35,26 @@ void InternalTorque::AddLevelRow(double still, double residual_without_level,
   open.level_weight += still;
   open.level_sum += still * residual_without_level;
   open.level_pose_sum += still * pose;
+}
+
+Eigen::Vector3d ArmPriorSd(const FilterOptions& o,
+                           const std::vector<models::EffectParameters>& effects, int joint) {
+  Eigen::Vector3d sd(o.internal_inertia_sd_kg_m2, o.internal_coulomb_sd_nm,
+                     o.internal_viscous_sd_nm_s);
+  const std::string index = std::to_string(joint + 1);
+  for (const auto& e : effects) {
+    const auto stated = [&e](const std::string& name, double* out) {
+      for (std::size_t k = 0; k < e.parameter_names.size() && k < e.sd.size(); ++k) {
+        if (e.parameter_names[k] == name && std::isfinite(e.sd[k]) && e.sd[k] > 0.0) *out = e.sd[k];
+      }
+    };
+    if (e.name == models::JointInertiaEffect::kInfo.name) stated("inertia" + index, &sd[0]);
+    if (e.name == models::JointFrictionEffect::kInfo.name) {
+      stated("coulomb" + index, &sd[1]);
+      stated("viscous" + index, &sd[2]);
+    }
+  }
+  return sd;
 }
 
 Eigen::Matrix2d ArmFriction(double velocity_scale_rad_s, const Eigen::Vector2d& velocity_rad_s) {

@@ -11,6 +11,7 @@
 
 #include "filter_free_level.h"
 #include "pliant/estimation/filter_options.h"
+#include "pliant/models/parameters.h"
 
 namespace pliant::estimation::filter_internal {
 
@@ -23,7 +24,8 @@ struct InternalTorque {
   Eigen::Matrix4d prior_information = Eigen::Matrix4d::Zero();
   Vector4 information_mean = Vector4::Zero();  // information · coefficients
   Vector4 regressor = Vector4::Zero();     // this row's (θ̈, tanh(θ̇/v_f), θ̇, 1)
-  void Start(const FilterOptions& o);
+  /// motion_sd: the prior σ of J, f and c (ArmPriorSd).
+  void Start(const FilterOptions& o, const Eigen::Vector3d& motion_sd);
   /// This row's regressor: the acceleration and the joint's row of ArmFriction.
   void SetMotion(double acceleration_rad_s2, const Eigen::Vector2d& friction_columns) {
     regressor << acceleration_rad_s2, friction_columns[0], friction_columns[1], 1.0;
@@ -69,6 +71,13 @@ struct InternalTorque {
  private:
   void Teach(const Batch& batch, double memory_s);
 };
+
+/// The prior σ of joint `joint`'s J, f and c: the options' unless the
+/// parameters file states the arm's dynamics (joint_inertia, joint_friction
+/// with σ, identified from free motion): then the learned terms correct the
+/// file's, which the filter takes out of the effort, within the file's σ.
+Eigen::Vector3d ArmPriorSd(const FilterOptions& o,
+                           const std::vector<models::EffectParameters>& effects, int joint);
 
 /// The arm's friction is the catalogue's `joint_friction` (models/effects/
 /// joint_friction.h), evaluated, not restated: row j holds ∂τ_j/∂coulomb_j and

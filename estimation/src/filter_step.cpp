@@ -61,6 +61,9 @@ void ComplianceFilter::Impl::ExtraInternalTorque(const FilterSample& sample) {
   effect_inputs = effect_rows.Update(
       sample.time_s, Eigen::Vector3d(sample.encoder_rad[0], sample.encoder_rad[1], depth),
       sample.effort_nm, sample.velocity_rad_s);
+  // The acceleration the learned J·θ̈ reads (MotorMotion), as the state is aligned to it.
+  if (!options.quasi_static)
+    effect_inputs.acceleration_rad_s2 << motion[0].acceleration_rad_s2, motion[1].acceleration_rad_s2;
   extra_internal_torque_nm = extra_effects.InternalTorque(effect_inputs);
   extra_internal_variance_nm2 =
       extra_effects.ConsideredVariance(effect_inputs, models::Channel::kInternalTorque);

@@ -17,7 +17,8 @@ std::vector<T> Flatten(const JointState<T>& s) {
           s.external_torque_nm[0], s.external_torque_nm[1], s.velocity_rad_s[0],
           s.velocity_rad_s[1],     s.time_s,                s.effort_rate_nm_s[0],
           s.effort_rate_nm_s[1],   s.travel_since_reversal_rad[0],
-          s.travel_since_reversal_rad[1]};
+          s.travel_since_reversal_rad[1], s.acceleration_rad_s2[0],
+          s.acceleration_rad_s2[1]};
 }
 
 template <typename T>
@@ -30,6 +31,7 @@ JointState<T> Unflatten(const T* x) {
   s.time_s = x[7];
   s.effort_rate_nm_s << x[8], x[9];
   s.travel_since_reversal_rad << x[10], x[11];
+  s.acceleration_rad_s2 << x[12], x[13];
   return s;
 }
 
@@ -83,7 +85,7 @@ std::string InputName(const EffectModel& effect, int column) {
 const std::vector<std::string>& JointStateInputNames() {
   static const std::vector<std::string> names = {
       "q1", "q2", "insertion_depth_m", "external_torque1", "external_torque2", "v1", "v2", "t",
-      "effort_rate1", "effort_rate2", "travel1", "travel2"};
+      "effort_rate1", "effort_rate2", "travel1", "travel2", "a1", "a2"};
   return names;
 }
 

@@ -125,7 +125,7 @@ Study ParseStudy(const std::string& text, const std::string& file) {
            {{"format", true}, {"version", true}, {"description", true}, {"scenario", true},
             {"scenario_set", false}, {"trials", true}, {"seed", true}, {"identify", false},
             {"identify_method", false},
-            {"calibration", false}, {"instrument", false}, {"noise", false},
+            {"calibration", false}, {"arm_calibration", false}, {"instrument", false}, {"noise", false},
             {"contact", false}, {"filter", false}});
   if (r.String(doc["format"], "/format") != kFormat) {
     r.Fail("/format", "format must be \"pliant-study\"", "is this a study file?");
@@ -203,26 +203,35 @@ Study ParseStudy(const std::string& text, const std::string& file) {
            "fix the scenario file or scenario_set");
   }
   std::string calibration_texts;
+  // One {"scenario": FILE, "set": [...]} entry, read into `into`.
+  const auto read_entry = [&](const json& entry, const std::string& pc, std::vector<Scenario>* into) {
+    r.Object(entry, pc, {{"scenario", true}, {"set", false}});
+    const std::string calibration_path =
+        (path.parent_path() / r.String(entry["scenario"], pc + "/scenario")).lexically_normal().string();
+    const auto set = entry.contains("set") ? ReadSet(r, entry["set"], pc + "/set") : std::vector<std::string>{};
+    try {
+      const std::string calibration_text = ReadText(calibration_path, "scenario file", "check the path");
+      into->push_back(ParseScenario(calibration_text, calibration_path, set));
+      calibration_texts += calibration_text;
+    } catch (const io::InputError& e) {
+      r.Fail(pc, "this calibration scenario is not usable: " + std::string(e.what()),
+             "fix the scenario file or the set");
+    }
+  };
   if (doc.contains("calibration")) {
     const json& c = doc["calibration"];
     if (!c.is_array()) {
       r.Fail("/calibration", "calibration must be an array of {\"scenario\": FILE, \"set\": [...]}",
              "see experiments/studies/identify_study.json");
     }
-    for (std::size_t i = 0; i < c.size(); ++i) {
-      const std::string pc = "/calibration/" + std::to_string(i);
-      r.Object(c[i], pc, {{"scenario", true}, {"set", false}});
-      const std::string calibration_path =
-          (path.parent_path() / r.String(c[i]["scenario"], pc + "/scenario")).lexically_normal().string();
-      const auto set = c[i].contains("set") ? ReadSet(r, c[i]["set"], pc + "/set") : std::vector<std::string>{};
-      try {
-        const std::string calibration_text = ReadText(calibration_path, "scenario file", "check the path");
-        s.calibration.push_back(ParseScenario(calibration_text, calibration_path, set));
-        calibration_texts += calibration_text;
-      } catch (const io::InputError& e) {
-        r.Fail(pc, "this calibration scenario is not usable: " + std::string(e.what()),
-               "fix the scenario file or the set");
-      }
+    for (std::size_t i = 0; i < c.size(); ++i)
+      read_entry(c[i], "/calibration/" + std::to_string(i), &s.calibration);
+  }
+  if (doc.contains("arm_calibration")) {
+    read_entry(doc["arm_calibration"], "/arm_calibration", &s.arm_calibration);
+    if (s.arm_calibration.back().type != ExperimentType::kFreeMotion) {
+      r.Fail("/arm_calibration", "the arm's calibration must be a free_motion experiment",
+             "use experiments/scenarios/free_motion.json, or a copy of it");
     }
   }
   if (s.identify && s.calibration.empty()) {
@@ -301,6 +310,7 @@ Study ParseStudy(const std::string& text, const std::string& file) {
   // The method as read, not as written: a default that changes makes another study.
   if (s.identify) doc["identify_method"] = IdentifyMethodName(s.identify_method);
   s.fingerprint = Fnv1a(calibration_texts, Fnv1a(scenario_text, Fnv1a(doc.dump() + "\n")));
+  s.arm_effects = IdentifyArmDynamics(s);
   return s;
 }
 

@@ -162,9 +162,11 @@ TrialResult RunTrial(const Study& study, int trial) {
   }
   const io::Log log = Simulate(push, d.simulation_seed).log;
 
-  const models::ModelParameters parameters = study.identify
-                                                 ? Identify(study, push.truth, d, stream)
-                                                 : NominalParameters(study, d.values[kDepthM]);
+  models::ModelParameters parameters = study.identify ? Identify(study, push.truth, d, stream)
+                                                     : NominalParameters(study, d.values[kDepthM]);
+  // The arm's dynamics, identified once on its free motion (study.arm_calibration).
+  parameters.effects.insert(parameters.effects.end(), study.arm_effects.begin(),
+                            study.arm_effects.end());
   const estimation::ComplianceCorrector equation2(parameters, estimation::CorrectionModel::kPaper);
   const estimation::ComplianceCorrector deadzone(parameters, estimation::CorrectionModel::kDeadZone);
   estimation::FilterOptions options;
@@ -173,7 +175,8 @@ TrialResult RunTrial(const Study& study, int trial) {
   // under study: the filter is told it (docs/filter.md, motor inertia), as a
   // lab would from the arm's dynamic identification; likewise the damping of
   // the instrument model's shaft, which the study does not vary.
-  options.motor_inertia_kg_m2 = push.joint.inertia_kg_m2.mean();
+  // (Identified, the file's joint_inertia carries it: not twice.)
+  if (study.arm_effects.empty()) options.motor_inertia_kg_m2 = push.joint.inertia_kg_m2.mean();
   options.shaft_damping_nm_s_per_rad = push.tip.shaft_damping_nm_s_per_rad;  // the arm's shafts
   InstrumentPrior(study, parameters, &options);
   options.deflection_model_error = study.deflection_model_error;  // NaN: the filter's default

@@ -35,6 +35,38 @@ TEST(EffectInputs, RatesAndVelocitiesInClosedForm) {
   }
 }
 
+// The acceleration is the velocity's rate over the same window: the log's
+// v1 = 0.3 + 2·s gives 2 rad/s² from the third row; q2 = 0.75·s² without a
+// velocity column gives backward differences 1.5·s − const, whose rate is 1.5
+// once the first row (no difference yet: 0) has left the 0.1 s window.
+// The centred rates of a whole log read the same line half a window later.
+TEST(EffectInputs, AccelerationIsTheVelocitysRate) {
+  EffectInputs inputs;
+  const double dt = 1.0 / 1000.0;
+  for (int k = 0; k < 300; ++k) {
+    const double s = k * dt;
+    const auto& state = inputs.Update(5.0 + s, {0.1, 0.75 * s * s, 0.15}, {0.0, 0.0},
+                                      {0.3 + 2.0 * s, kNaN});
+    if (k < 3) continue;
+    EXPECT_NEAR(state.acceleration_rad_s2[0], 2.0, 1e-9) << k;
+    if (k > 101) EXPECT_NEAR(state.acceleration_rad_s2[1], 1.5, 1e-6) << k;
+  }
+  io::Log log;
+  log.header.columns = {"t", "q1", "q2", "q3", "tau1", "tau2", "v1"};
+  for (int k = 0; k < 2000; ++k) {
+    const double t = k * 0.001;  // v1 = sin(2πt): a = 2π cos(2πt)
+    const std::vector<double> row = {t, 0.0, 0.0, 0.15, 0.0, 0.0, std::sin(2 * M_PI * t)};
+    log.values.insert(log.values.end(), row.begin(), row.end());
+  }
+  const auto centred = CentredAccelerations(log);
+  // A 0.1 s line through a 1 Hz sine: slope 2π·cos(2πt)·(1 − (2π·0.1)²/40 …),
+  // centred within a row (1 ms: 4π²·0.001 = 0.04 rad/s²).
+  for (int k = 100; k < 1900; k += 37) {
+    EXPECT_NEAR(centred[std::size_t(k)][0], 2 * M_PI * std::cos(2 * M_PI * k * 0.001), 0.07) << k;
+    EXPECT_EQ(centred[std::size_t(k)][1], 0.0);
+  }
+}
+
 // A row 0.5 s after the last (a pose log without its mark, a time gap) and
 // every row of a quasi-static log: no velocity, no rate.
 TEST(EffectInputs, PosesAndGapsHaveNoMotion) {

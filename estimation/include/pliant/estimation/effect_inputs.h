@@ -33,7 +33,8 @@ class EffectInputs {
   /// This row's inputs: encoder angles and depth q (rad, rad, m), the time
   /// (s), the measured efforts (N·m) and the log's joint velocities (rad/s;
   /// NaN where it has none: the encoders' backward difference instead). The
-  /// external torque is left 0 (the consumer sets it).
+  /// acceleration is the velocities' trailing line over the effort rate's
+  /// window. The external torque is left 0 (the consumer sets it).
   const models::JointState<double>& Update(double time_s, const Eigen::Vector3d& q,
                                            const Eigen::Vector2d& effort_nm,
                                            const Eigen::Vector2d& velocity_rad_s);
@@ -44,7 +45,8 @@ class EffectInputs {
   const models::JointState<double>& state() const { return state_; }
 
  private:
-  void AddEffort(double time_s, const Eigen::Vector2d& effort_nm);
+  void AddEffort(double time_s, const Eigen::Vector2d& effort_nm,
+                 const Eigen::Vector2d& velocity_rad_s);
   void DropOldest();
   void Sum(int slot, double sign);
   void Resum();
@@ -55,14 +57,15 @@ class EffectInputs {
   models::TravelSinceReversal travel_;
   double last_time_ = std::numeric_limits<double>::quiet_NaN();
   Eigen::Vector2d last_angle_{0.0, 0.0};
-  // The efforts of the last window, a ring; the rate line's sums about the
-  // anchor time, re-added from the ring every kRing rows (no drift).
-  static constexpr int kRing = 512;
-  std::array<double, kRing> time_{}, effort_[2]{};
+  // The efforts and velocities (channels 0–1, 2–3) of the last window, a
+  // ring; the rate lines' sums about the anchor time, re-added from the ring
+  // every kRing rows (no drift).
+  static constexpr int kRing = 512, kChannels = 4;
+  std::array<double, kRing> time_{}, value_[kChannels]{};
   double last_effort_[2] = {0.0, 0.0};  // what a missing sample of one joint repeats
   int oldest_ = 0, count_ = 0, since_resum_ = 0;
-  double anchor_s_ = 0.0, n_ = 0.0, st_ = 0.0, stt_ = 0.0, sy_[2] = {0.0, 0.0},
-         sty_[2] = {0.0, 0.0};
+  double anchor_s_ = 0.0, n_ = 0.0, st_ = 0.0, stt_ = 0.0, sy_[kChannels] = {},
+         sty_[kChannels] = {};
 };
 
 /// The effort's rate (N·m/s) at each row of a whole log, for the consumers
@@ -72,6 +75,9 @@ class EffectInputs {
 /// read half a window later. 0 on a quasi-static log.
 std::vector<Eigen::Vector2d> CentredEffortRates(const io::Log& log, double window_s = 0.1,
                                                 double max_step_s = 0.1);
+/// The joints' acceleration (rad/s²) at each row, centred the same way.
+std::vector<Eigen::Vector2d> CentredAccelerations(const io::Log& log, double window_s = 0.1,
+                                                  double max_step_s = 0.1);
 
 /// The log with the internal torque of `parameters`' effects taken out of
 /// its efforts, row by row at EffectInputs' inputs (the effort's rate

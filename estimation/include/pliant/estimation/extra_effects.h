@@ -44,6 +44,9 @@ class ExtraEffects {
   Eigen::Vector2d ConsideredVariance(const models::JointState<double>& state,
                                      models::Channel channel) const;
 
+  /// The named effects' σ leave ConsideredVariance: a consumer that carries
+  /// their doubt itself (the filter's learned arm torque). Allocates.
+  void DropConsidered(const std::vector<std::string>& names);
   /// Each effect with its parameter values, in the catalogue's order (for
   /// consumers that evaluate them with Jets, such as the filter).
   const std::vector<std::unique_ptr<EffectModel>>& models() const { return models_; }

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "pliant/experiments/scenario.h"
+#include "pliant/models/parameters.h"
 
 namespace pliant::experiments {
 
@@ -85,6 +86,13 @@ struct Study {
   /// beam), each simulated with the trial's truth; their files' texts enter
   /// the fingerprint.
   std::vector<Scenario> calibration;
+  /// A free-motion experiment of the study's arm (its `joint` is the
+  /// scenario's; none or one): simulated once, the arm's dynamics are
+  /// identified on it as a lab identifies its own arm (`pliant identify
+  /// --effect joint_inertia --effect joint_friction`, IdentifyArmDynamics) and
+  /// every trial's parameters carry them, with their σ.
+  std::vector<Scenario> arm_calibration;
+  std::vector<models::EffectParameters> arm_effects;
   /// The filter's and smoother's deflection-model error ε
   /// (estimation::FilterOptions::deflection_model_error); NaN: the filter's
   /// default for the arm (0.04 with the shaft's damping, else 0.08).
@@ -109,6 +117,10 @@ struct Study {
   /// text: a results directory belongs to one fingerprint.
   std::uint64_t fingerprint = 0;
 };
+
+/// The arm's dynamics identified on the study's arm_calibration (empty
+/// without one): the catalogue effects estimation::FittedFromFreeMotion.
+std::vector<models::EffectParameters> IdentifyArmDynamics(const Study& study);
 
 /// Reads a study file; throws io::InputError naming the file, line and key.
 Study ReadStudy(const std::string& path);

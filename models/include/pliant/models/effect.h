@@ -88,6 +88,9 @@ struct JointState {
   /// Signed encoder travel since the joint last reversed (rad; the held-friction
   /// effect): models::TravelSinceReversal computes it from the rows so far.
   Vec2<T> travel_since_reversal_rad = Vec2<T>::Zero();
+  /// d v / dt (rad/s²; the arm's inertia): the velocity's rate over the same
+  /// window as the effort's (estimation::EffectInputs), 0 on a pose log.
+  Vec2<T> acceleration_rad_s2 = Vec2<T>::Zero();
 
   /// The same state in another scalar type (e.g. double -> ceres::Jet).
   template <typename U>
@@ -100,13 +103,14 @@ struct JointState {
     out.time_s = U(time_s);
     out.effort_rate_nm_s = effort_rate_nm_s.template cast<U>();
     out.travel_since_reversal_rad = travel_since_reversal_rad.template cast<U>();
+    out.acceleration_rad_s2 = acceleration_rad_s2.template cast<U>();
     return out;
   }
 };
 
 /// Number of scalar inputs in a JointState, in the order
 /// q1, q2, q3, tau_ext1, tau_ext2, v1, v2, t, tau_rate1, tau_rate2, travel1,
-/// travel2 (used by the Jacobian check).
-inline constexpr int kJointStateSize = 12;
+/// travel2, a1, a2 (used by the Jacobian check).
+inline constexpr int kJointStateSize = 14;
 
 }  // namespace pliant::models
