@@ -5,7 +5,10 @@
 // values, and each joint's 95 % intervals covering the truth on 93–99 % of
 // the held samples (issue 26's 93–97 %, with room for the sampling spread of
 // trials that share one instrument per trial).
+#include <algorithm>
+#include <cmath>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -51,6 +54,47 @@ TEST(FamilyStudy, TheFilterIsHonestOnInstrumentsUnlikeTheDefaultsAt100Hz) {
 // the clearance's spread is uniform, its prior Gaussian with the same variance.
 TEST(FamilyStudy, TheFilterIsHonestOnInstrumentsUnlikeTheDefaultsAt1500Hz) {
   ExpectHonest("families_1500hz.json", 300, 0.995);
+}
+
+// Online (no tip_fixed hint), the arm's dynamics identified once on 30 s of
+// its free motion (study key arm_calibration) are the learned arm torque's
+// prior: on the first 100 trials the filter's median tip error against
+// equation (2)'s and its held coverage, with and without them (about 14 s).
+// Measured: 1.050 and 86.3 % without, 0.802 and 91.6 % with. Not yet honest
+// (NEES 2.78 over the whole study: docs/validation.md "still short").
+struct OnlineFigures {
+  double filter_over_equation2 = 0.0, coverage = 0.0;
+};
+
+OnlineFigures RunOnline(const Study& study, int trials) {
+  std::vector<double> filter, equation2;
+  OnlineFigures f;
+  for (int k = 0; k < trials; ++k) {
+    const TrialResult r = RunTrial(study, k);
+    filter.push_back(r.tip_error_mm[kFilter]);
+    equation2.push_back(r.tip_error_mm[kEquation2]);
+    f.coverage += r.coverage_fraction[0] / trials;
+  }
+  const auto median = [](std::vector<double> v) {
+    std::nth_element(v.begin(), v.begin() + long(v.size() / 2), v.end());
+    return v[v.size() / 2];
+  };
+  f.filter_over_equation2 = median(filter) / median(equation2);
+  return f;
+}
+
+TEST(FamilyStudy, OnlineTheArmsIdentifiedDynamicsBringTheFilterBelowEquation2) {
+  const Study arm = ReadStudy(PLIANT_SOURCE_DIR "/experiments/studies/families_1500hz_online_arm.json");
+  ASSERT_EQ(arm.arm_effects.size(), 2u);
+  const auto& inertia = arm.arm_effects[1];  // the plant's 0.08 kg·m², identified
+  ASSERT_EQ(inertia.name, "joint_inertia");
+  for (int j = 0; j < 2; ++j)
+    EXPECT_LT(std::abs(inertia.values[j] - 0.08), 3.0 * inertia.sd[j]) << inertia.values[j];
+  const Study without = ReadStudy(PLIANT_SOURCE_DIR "/experiments/studies/families_1500hz_online.json");
+  const OnlineFigures before = RunOnline(without, 100), after = RunOnline(arm, 100);
+  EXPECT_GT(before.filter_over_equation2, 1.0);
+  EXPECT_LT(after.filter_over_equation2, 0.85);
+  EXPECT_GT(after.coverage, before.coverage + 0.03);
 }
 
 }  // namespace
