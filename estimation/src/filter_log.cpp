@@ -81,15 +81,17 @@ LogPrefix ReadPrefix(const std::string& path, const io::LogReaderOptions& read_o
 }
 
 // What the filter runs with on this log: OptionsForLog, then EffortNoiseForLog.
-FilterOptions UsedOptions(const FilterOptions& options, const io::LogHeader& header,
-                          const std::string& path, const io::LogReaderOptions& read_options,
-                          LogFilterSummary* summary) {
+FilterOptions UsedOptions(const models::ModelParameters& parameters, const FilterOptions& options,
+                          const io::LogHeader& header, const std::string& path,
+                          const io::LogReaderOptions& read_options, LogFilterSummary* summary) {
   const LogPrefix prefix = ReadPrefix(path, read_options);
   FilterOptions used =
       OptionsForLog(options, header, MedianRowSpacing(prefix.times_s), &summary->notes);
   if (path == "-" && used.effort_noise_from_log && !used.quasi_static) {
     summary->notes.push_back("standard input is read once: the effort noise is not estimated");
   }
+  const std::string arm = ArmDynamicsAdvice(parameters, used, header);
+  if (!arm.empty()) summary->advice.push_back(arm);
   return EffortNoiseForLog(used, prefix.effort_nm, &summary->notes, &summary->advice);
 }
 
@@ -208,7 +210,7 @@ LogFilterSummary SmoothLog(const std::string& input_path, const std::string& out
   io::LogHeader header = reader.header();
   const io::StandardColumns in(header);
   const std::size_t input_columns = header.columns.size();
-  const FilterOptions used = UsedOptions(options, header, input_path, read_options, summary);
+  const FilterOptions used = UsedOptions(parameters, options, header, input_path, read_options, summary);
   OutputColumns out(header);
   out.recorded[0] = used.joint_recorded[0];
   out.recorded[1] = used.joint_recorded[1];
@@ -355,7 +357,8 @@ LogFilterSummary FilterLog(const std::string& input_path, const std::string& out
   if (!smooth) {
     io::LogReader reader(input_path, read_options);
     io::LogHeader header = reader.header();
-    const FilterOptions used = UsedOptions(options, header, input_path, read_options, &summary);
+    const FilterOptions used =
+        UsedOptions(parameters, options, header, input_path, read_options, &summary);
     ComplianceFilter filter(parameters, used);
     const io::StandardColumns in(header);
     const std::size_t input_columns = header.columns.size();

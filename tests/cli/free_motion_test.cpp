@@ -129,6 +129,19 @@ TEST(RealFreeMotion, TheArmsDynamicsIdentifiedOnItsFreeMotion) {
   const FalseCorrection with_dynamics = Measure(dir / "filtered.csv");
   EXPECT_LE(with_dynamics.median_mm, 0.3);
   EXPECT_GE(with_dynamics.share_within_two_sd, 0.95);
+  // Online without them, the summary says how to get them; with them, or
+  // with the tip_fixed hint, it says nothing of it.
+  const std::string advice = "hold none of the arm's own dynamics";
+  EXPECT_EQ(r.out.find(advice), std::string::npos) << r.out;
+  const std::string paper = PLIANT_SOURCE_DIR "/data/paper.json";
+  const auto without = RunCommand(kCli + " filter --params '" + paper + "' '" + kFree + "' -o '" +
+                                      (dir / "paper.csv").string() + "'",
+                                  dir);
+  EXPECT_NE(without.out.find(advice), std::string::npos) << without.out;
+  const auto hinted = RunCommand(kCli + " filter --params '" + paper + "' '" PLIANT_SOURCE_DIR
+                                     "/data/divot.csv' -o '" + (dir / "divot.csv").string() + "'",
+                                 dir);
+  EXPECT_EQ(hinted.out.find(advice), std::string::npos) << hinted.out;
 }
 
 }  // namespace

@@ -71,6 +71,14 @@ FilterOptions OptionsForLog(FilterOptions options, const io::LogHeader& header,
 FilterOptions EffortNoiseForLog(FilterOptions options, const std::vector<double> effort_nm[2],
                                 std::vector<std::string>* notes, std::vector<std::string>* advice);
 
+/// Online — the log has no tip_fixed column, its rows are samples in time and
+/// contact is inferred — with neither joint_inertia nor joint_friction in the
+/// parameters: the sentence that says the filter learns the arm's torque from
+/// its generic priors, which take up a push's first load, and how to identify
+/// the arm's own (docs/decisions/arm-dynamics-from-free-motion.md); "" else.
+std::string ArmDynamicsAdvice(const models::ModelParameters& parameters,
+                              const FilterOptions& used, const io::LogHeader& header);
+
 /// Throws io::InputError for a bad log and std::system_error when the output
 /// cannot be written; no output file is left behind then.
 LogFilterSummary FilterLog(const std::string& input_path, const std::string& output_path,
