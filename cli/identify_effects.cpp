@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "pliant/estimation/identification_report.h"
 #include "pliant/io/input_error.h"
 #include "pliant/io/progress.h"
 
@@ -26,18 +27,6 @@ std::string ParametersText(const estimation::EffectFinding& e) {
     text += line;
   }
   return text + "\n";
-}
-
-nlohmann::json ParametersJson(const std::vector<estimation::EffectFinding>& findings) {
-  nlohmann::json effects = nlohmann::json::array();
-  for (const auto& e : findings) {
-    nlohmann::json parameters = nlohmann::json::array();
-    for (std::size_t k = 0; k < e.parameters.size(); ++k)
-      parameters.push_back({{"name", e.parameter_names[k]}, {"value", e.parameters[k]},
-                            {"sd", k < e.parameter_sd.size() ? e.parameter_sd[k] : 0.0}});
-    effects.push_back({{"name", e.name}, {"parameters", parameters}});
-  }
-  return effects;
 }
 
 std::string HeldText(const estimation::LogEffectFit& fit) {
@@ -124,18 +113,11 @@ std::string EffectFitsText(const EffectFits& fits) {
 }
 
 void AddEffectFitsJson(const EffectFits& fits, nlohmann::json* json) {
-  if (const auto& f = fits.free_motion) {
-    (*json)["free_motion_fit"] = {
-        {"logs", f->logs}, {"rows", f->rows}, {"blocks", f->blocks}, {"block_s", f->block_s},
-        {"correlation_s", f->correlation_s},
-        {"effort_rms_before_nm", {f->rms_before_nm[0], f->rms_before_nm[1]}},
-        {"effort_rms_after_nm", {f->rms_after_nm[0], f->rms_after_nm[1]}},
-        {"effects", ParametersJson(f->fitted.effects)}, {"notes", f->notes}};
-  }
+  if (fits.free_motion) (*json)["free_motion_fit"] = estimation::FreeMotionFitJson(*fits.free_motion);
   if (const auto& h = fits.held) {
     (*json)["effects_fit"] = {{"logs", h->logs}, {"samples", h->samples},
                               {"segments", h->segments},
-                              {"effects", ParametersJson(h->fitted.effects)},
+                              {"effects", estimation::EffectFindingsJson(h->fitted.effects)},
                               {"heldout_rms_given_mm", h->rms_given_mm},
                               {"heldout_rms_refit_mm", h->rms_refit_mm},
                               {"heldout_rms_with_effects_mm", h->rms_with_effects_mm},

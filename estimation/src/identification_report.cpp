@@ -191,4 +191,25 @@ std::string DepthTable(const ParametersAtDepth& at) {
   return out;
 }
 
+nlohmann::json EffectFindingsJson(const std::vector<EffectFinding>& findings) {
+  nlohmann::json effects = nlohmann::json::array();
+  for (const auto& e : findings) {
+    nlohmann::json parameters = nlohmann::json::array();
+    for (std::size_t k = 0; k < e.parameters.size(); ++k)
+      parameters.push_back({{"name", e.parameter_names[k]}, {"value", e.parameters[k]},
+                            {"sd", k < e.parameter_sd.size() ? e.parameter_sd[k] : 0.0}});
+    effects.push_back({{"name", e.name}, {"parameters", parameters}});
+  }
+  return effects;
+}
+
+nlohmann::json FreeMotionFitJson(const FreeMotionFit& fit) {
+  const nlohmann::json effects = EffectFindingsJson(fit.fitted.effects);
+  return {{"logs", fit.logs}, {"rows", fit.rows}, {"blocks", fit.blocks},
+          {"block_s", fit.block_s}, {"correlation_s", fit.correlation_s},
+          {"effort_rms_before_nm", {fit.rms_before_nm[0], fit.rms_before_nm[1]}},
+          {"effort_rms_after_nm", {fit.rms_after_nm[0], fit.rms_after_nm[1]}},
+          {"effects", effects}, {"notes", fit.notes}};
+}
+
 }  // namespace pliant::estimation

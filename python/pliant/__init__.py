@@ -44,7 +44,8 @@ from . import _pliant
 
 __all__ = [
     "InputError", "Log", "read_log", "write_log", "Parameters", "load_parameters",
-    "parameters_from_json", "correct", "correct_log", "identify", "diagnose", "filter_log",
+    "parameters_from_json", "correct", "correct_log", "identify", "identify_arm_dynamics",
+    "diagnose", "filter_log",
     "Filter", "FilterEstimate", "filter_option_defaults", "FLAG_REJECTED", "FLAG_MISSING",
     "FLAG_DEPTH_OUT_OF_RANGE", "FLAG_EFFORT_SATURATED", "FLAG_MODEL_MISMATCH", "FLAG_REACQUIRED",
     "FLAG_REPAIRED", "FLAG_OUTPUT_LIMITED",
@@ -174,6 +175,26 @@ def identify(logs, output=None, method="smoother", law="inverse_cubic", prior=No
     if output is not None:
         parameters.save(os.fspath(output))
         report["output"] = os.fspath(output)
+    return parameters, report
+
+
+def identify_arm_dynamics(logs, params, output=None, skip_bad_rows=False):
+    """``pliant identify --effect joint_inertia --effect joint_friction`` on free motion:
+    the arm's inertia (kg·m²) and friction fitted where nothing holds the tip and a
+    joint moves, with their σ (docs/identification.md, "The arm's dynamics from free
+    motion"); the filter takes those σ as the prior of the arm torque it learns online.
+
+    logs: a path or a list of paths. params: the arm's Parameters (or a path), whose
+    bias table the fit reads. output: also save the parameters there. Returns
+    (Parameters with the effects, report), the report being ``--json``'s
+    'free_motion_fit'.
+    """
+    if isinstance(logs, (str, os.PathLike)):
+        logs = [logs]
+    parameters, report = _pliant.identify_arm_dynamics(
+        [os.fspath(p) for p in logs], _parameters(params)[0], skip_bad_rows)
+    if output is not None:
+        parameters.save(os.fspath(output))
     return parameters, report
 
 

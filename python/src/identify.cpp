@@ -8,6 +8,9 @@
 #include <pybind11/stl.h>
 
 #include "bindings.h"
+#include "pliant/estimation/effect_catalogue.h"
+#include "pliant/estimation/effect_fit.h"
+#include "pliant/estimation/free_motion_fit.h"
 #include "pliant/estimation/identification_report.h"
 #include "pliant/estimation/joint_smoother.h"
 #include "pliant/io/input_error.h"
@@ -62,9 +65,40 @@ py::tuple Identify(const std::vector<std::string>& logs, const std::string& meth
   return py::make_tuple(result.parameters, ToPython(report));
 }
 
+// The arm's dynamics on the logs' free motion, added to `parameters`
+// (identify --effect joint_inertia --effect joint_friction).
+py::tuple IdentifyArmDynamics(const std::vector<std::string>& logs, const Parameters& parameters,
+                              bool skip_bad_rows) {
+  std::vector<io::Log> read;
+  estimation::FreeMotionFit fit;
+  {
+    py::gil_scoped_release unlocked;
+    for (const auto& path : logs) read.push_back(io::ReadLog(path, {skip_bad_rows}));
+    std::vector<estimation::NamedLog> named;
+    for (std::size_t i = 0; i < read.size(); ++i) named.push_back({&read[i], logs[i]});
+    std::vector<std::string> names;
+    for (const auto& name : estimation::EffectCatalogue::Global().Names())
+      if (estimation::FittedFromFreeMotion(name)) names.push_back(name);
+    fit = estimation::FitEffectsOnFreeMotion(named, parameters, names);
+  }
+  std::string paths;
+  for (const auto& path : fit.logs) paths += (paths.empty() ? "" : ", ") + path;
+  const auto with = estimation::WithFittedEffects(
+      parameters, fit.fitted, "pliant.identify_arm_dynamics on the free motion of " + paths);
+  return py::make_tuple(with, ToPython(estimation::FreeMotionFitJson(fit)));
+}
+
 }  // namespace
 
 void BindIdentify(py::module_& m) {
+  m.def("identify_arm_dynamics", &IdentifyArmDynamics, py::arg("logs"), py::arg("parameters"),
+        py::arg("skip_bad_rows") = false,
+        "The arm's own dynamics — joint_inertia (kg·m²) and joint_friction — fitted on the free "
+        "motion of log files (rows with no held tip where a joint moves), as `pliant identify "
+        "--effect joint_inertia --effect joint_friction` does (docs/identification.md). "
+        "parameters: the arm's identified Parameters (their bias table is read). Returns "
+        "(Parameters with the effects added, report): the report is `--json`'s "
+        "'free_motion_fit'. The filter takes their σ as the prior of the arm torque it learns.");
   m.def("identify", &Identify, py::arg("logs"), py::arg("method") = "smoother",
         py::arg("law") = "inverse_cubic", py::arg("prior") = py::none(),
         py::arg("harmonics") = 2, py::arg("skip_bad_rows") = false,

@@ -75,3 +75,22 @@ def test_diagnose_writes_its_report_and_names_a_bad_effect(tmp_path):
     assert (tmp_path / "report" / "index.html").stat().st_size > 1000
     with pytest.raises(pliant.InputError, match="no effect named 'spring'"):
         pliant.diagnose(data("paper.json"), data("divot_hidden_effect.csv"), add=["spring"])
+
+
+def test_identify_arm_dynamics_on_the_real_free_motion(tmp_path):
+    """The real PSM2 bag's own inertia and friction (docs/identification.md): a
+    PSM joint's 0.1–0.3 kg·m², stated to 15 %, and most of the effort beyond the
+    table explained; the saved file carries them for the filter."""
+    bag = data("real/crtk2022_psm2_free.csv")
+    base, _ = pliant.identify([bag])
+    params, report = pliant.identify_arm_dynamics(bag, base, output=tmp_path / "arm.json")
+    inertia = next(e for e in report["effects"] if e["name"] == "joint_inertia")
+    for p in inertia["parameters"]:
+        assert 0.1 < p["value"] < 0.3 and p["sd"] < 0.15 * p["value"], p
+    for before, after in zip(report["effort_rms_before_nm"], report["effort_rms_after_nm"]):
+        assert after < 0.5 * before
+    assert report["rows"] == 3420 and report["blocks"] >= 5
+    saved = json.loads((tmp_path / "arm.json").read_text())
+    assert set(saved["effects"]) == {"joint_inertia", "joint_friction"}
+    with pytest.raises(pliant.InputError, match="free motion"):
+        pliant.identify_arm_dynamics(data("real/jhu2017_clamped_j1.csv"), params)

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "pliant/estimation/compliance_law_fit.h"
+#include "pliant/estimation/free_motion_fit.h"
 #include "pliant/estimation/identification.h"
 #include "pliant/estimation/parameter_query.h"
 
@@ -23,6 +24,13 @@ std::array<std::vector<LawComparison>, 2> CompareLaws(const IdentificationResult
 std::string IdentificationTable(const IdentificationResult& result,
                                 const IdentificationData& data,
                                 const std::array<std::vector<LawComparison>, 2>& laws);
+
+/// Fitted effects as [{"name", "parameters": [{"name", "value", "sd"}]}].
+nlohmann::json EffectFindingsJson(const std::vector<EffectFinding>& findings);
+
+/// `pliant identify --json`'s "free_motion_fit" (and pliant.identify_arm_dynamics's report):
+/// the logs, rows, blocks, the effort's RMS before and after, each effect's values ± sd.
+nlohmann::json FreeMotionFitJson(const FreeMotionFit& fit);
 
 nlohmann::json IdentificationJson(const IdentificationResult& result,
                                   const IdentificationData& data,
