@@ -191,8 +191,9 @@ if [ $long -eq 1 ]; then
     echo "  ($((SECONDS - t0)) s)"
   done
   # The families: instruments, noise and sample rates unlike the defaults; the
-  # last two without the tip_fixed hint (the last with the arm identified on its free motion).
-  for study in families_1500hz families_100hz families_1500hz_online families_1500hz_online_arm; do
+  # online ones without the tip_fixed hint (…_arm: the arm identified on its free motion).
+  for study in families_1500hz families_100hz families_1500hz_online families_1500hz_online_arm \
+      families_100hz_online families_100hz_online_arm; do
     t0=$SECONDS
     show "$pliant" montecarlo experiments/studies/${study}.json -o "$work/mc_$study" \
       --threads 2 --no-plots
