@@ -48,7 +48,7 @@ ExtraEffects::ExtraEffects(const std::vector<models::EffectParameters>& effects)
 }
 
 ExtraEffects::ExtraEffects(const ExtraEffects& other)
-    : values_(other.values_), sd_(other.sd_), seeded_(other.seeded_) {
+    : values_(other.values_), sd_(other.sd_), learned_(other.learned_), seeded_(other.seeded_) {
   for (const auto& m : other.models_) models_.push_back(m->Clone());
 }
 
@@ -71,8 +71,10 @@ void ExtraEffects::Seed() {
 }
 
 Eigen::Vector2d ExtraEffects::ConsideredVariance(const models::JointState<double>& state,
-                                                 models::Channel channel) const {
+                                                 models::Channel channel,
+                                                 Eigen::Vector2d* learned_part) const {
   Eigen::Vector2d variance = Eigen::Vector2d::Zero();
+  if (learned_part) learned_part->setZero();
   if (seeded_.empty()) return variance;
   const models::JointState<EffectJet> jets = state.Cast<EffectJet>();
   for (const SeededPass& pass : seeded_) {
@@ -80,10 +82,13 @@ Eigen::Vector2d ExtraEffects::ConsideredVariance(const models::JointState<double
     const models::Vec2<EffectJet> out = models_[pass.effect]->Evaluate(pass.values.data(), jets);
     const std::vector<double>& sd = sd_[pass.effect];
     const std::size_t last = std::min(sd.size(), pass.first + kEffectJetSize);
+    const bool learned = learned_part && pass.effect < learned_.size() && learned_[pass.effect];
     for (std::size_t i = pass.first; i < last; ++i) {
       for (int j = 0; j < 2; ++j) {
         const double term = out[j].v[i - pass.first] * sd[i];
-        if (std::isfinite(term)) variance[j] += term * term;
+        if (!std::isfinite(term)) continue;
+        variance[j] += term * term;
+        if (learned) (*learned_part)[j] += term * term;
       }
     }
   }
@@ -96,17 +101,16 @@ ExtraEffects& ExtraEffects::operator=(const ExtraEffects& other) {
     models_ = std::move(copy.models_);
     values_ = std::move(copy.values_);
     sd_ = std::move(copy.sd_);
+    learned_ = std::move(copy.learned_);
     seeded_ = std::move(copy.seeded_);
   }
   return *this;
 }
 
-void ExtraEffects::DropConsidered(const std::vector<std::string>& names) {
-  for (std::size_t k = 0; k < models_.size(); ++k) {
-    if (std::find(names.begin(), names.end(), models_[k]->Info().name) != names.end())
-      std::fill(sd_[k].begin(), sd_[k].end(), 0.0);
-  }
-  Seed();
+void ExtraEffects::SetLearned(const std::vector<std::string>& names) {
+  learned_.assign(models_.size(), false);
+  for (std::size_t k = 0; k < models_.size(); ++k)
+    learned_[k] = std::find(names.begin(), names.end(), models_[k]->Info().name) != names.end();
 }
 
 std::vector<std::string> ExtraEffects::Names() const {

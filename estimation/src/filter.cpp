@@ -63,11 +63,10 @@ ComplianceFilter::Impl::Impl(const models::ModelParameters& p, const FilterOptio
   // A quasi-static log has no dynamics to read: no inertial torque, no damping.
   if (o.quasi_static) options.motor_inertia_kg_m2 = options.shaft_damping_nm_s_per_rad = 0.0;
   // The arm's dynamics the file states are the learned torque's prior
-  // (ArmPriorSd): their σ is its doubt there, not the effort's noise as well.
-  if (o.infer_contact && !o.quasi_static) {
-    extra_effects.DropConsidered({std::string(models::JointFrictionEffect::kInfo.name),
-                                  std::string(models::JointInertiaEffect::kInfo.name)});
-  }
+  // (ArmPriorSd): where it is learned their σ is its doubt, not the effort's
+  // noise as well; on held rows (no learned torque) they stay noise.
+  extra_effects.SetLearned({std::string(models::JointFrictionEffect::kInfo.name),
+                            std::string(models::JointInertiaEffect::kInfo.name)});
   for (int j = 0; j < 2; ++j) {
     const auto& joint_parameters = p.joints[j];
     for (int i = 0; i < 4; ++i) {
@@ -150,6 +149,7 @@ void ComplianceFilter::Impl::Reset() {
   effect_rows = EffectInputs(options.quasi_static, options.time_gap_s);
   extra_internal_torque_nm.setZero();
   extra_internal_variance_nm2.setZero();
+  extra_learned_variance_nm2.setZero();
   held_given_contact = 0.5;
 }
 

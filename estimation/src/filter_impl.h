@@ -287,13 +287,13 @@ struct ComplianceFilter::Impl {
 
   models::ModelParameters parameters;
   FilterOptions options;
-  // The parameters file's further effects (its "effects": held friction, …):
-  // the internal torques they put in each effort are taken out of it, as
-  // pliant correct does (the same catalogue code), and their parameters' σ
-  // is the effort's further noise (ConsideredVariance). This state step's:
+  // The parameters file's further effects (held friction, …): their torques are taken out of
+  // each effort, as pliant correct does, their parameters' σ is the effort's further noise
+  // (ConsideredVariance; the arm dynamics' share apart). This state step's:
   ExtraEffects extra_effects;
   EffectInputs effect_rows;  // (made again with the options in Reset)
-  Eigen::Vector2d extra_internal_torque_nm{0.0, 0.0}, extra_internal_variance_nm2{0.0, 0.0};
+  Eigen::Vector2d extra_internal_torque_nm{0.0, 0.0}, extra_internal_variance_nm2{0.0, 0.0},
+      extra_learned_variance_nm2{0.0, 0.0};
   // The row's inputs the effects see (EffectInputs: angles, depth, time,
   // velocity, the effort's rate, travel); the deflection effects get the
   // state's τ on top (filter_deflection.cpp).

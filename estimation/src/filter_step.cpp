@@ -65,8 +65,8 @@ void ComplianceFilter::Impl::ExtraInternalTorque(const FilterSample& sample) {
   if (!options.quasi_static)
     effect_inputs.acceleration_rad_s2 << motion[0].acceleration_rad_s2, motion[1].acceleration_rad_s2;
   extra_internal_torque_nm = extra_effects.InternalTorque(effect_inputs);
-  extra_internal_variance_nm2 =
-      extra_effects.ConsideredVariance(effect_inputs, models::Channel::kInternalTorque);
+  extra_internal_variance_nm2 = extra_effects.ConsideredVariance(
+      effect_inputs, models::Channel::kInternalTorque, &extra_learned_variance_nm2);
   for (int j = 0; j < 2; ++j) {
     if (!std::isfinite(extra_internal_torque_nm[j])) extra_internal_torque_nm[j] = 0.0;
   }
@@ -276,7 +276,8 @@ void ComplianceFilter::Impl::UpdateEffort(const FilterSample& sample, int j, boo
   // With the level on, σ_rest is the level's equilibrium (InternalTorque::Variance).
   const double settled = arm.level.on ? noise : rest;
   const double variance =
-      extra_internal_variance_nm2[j] +
+      extra_internal_variance_nm2[j] -
+      (mixture && !sample.tip_fixed ? extra_learned_variance_nm2[j] : 0.0) +
       (sample.tip_fixed ? HeldEffortVariance(options, inertial_torque)
        : mixture        ? settled + moving * unmodelled[j].variance + arm.Variance()
                         : noise);

@@ -12,12 +12,13 @@
 namespace pliant::models {
 
 std::vector<ParameterSpec> JointFrictionEffect::Parameters() const {
-  // Friction of a cable-driven PSM joint is a few hundredths of a N·m, well
-  // under the 3.3 N·m effort limit; the velocity scale is that of a slow move.
-  return {{"viscous1", "N·m·s/rad", 0.0, 0.0, 1.0, 0.05},
-          {"viscous2", "N·m·s/rad", 0.0, 0.0, 1.0, 0.05},
-          {"coulomb1", "N·m", 0.0, 0.0, 1.0, 0.05},
-          {"coulomb2", "N·m", 0.0, 0.0, 1.0, 0.05},
+  // The real PSM2 of the shared bag has Coulomb levels of 0.12–0.14 N·m and
+  // viscous 0.13–0.41 N·m·s/rad (docs/real-data.md), well under the 3.3 N·m
+  // effort limit; the priors span that arm. The velocity scale is that of a slow move.
+  return {{"viscous1", "N·m·s/rad", 0.0, 0.0, 1.0, 0.3},
+          {"viscous2", "N·m·s/rad", 0.0, 0.0, 1.0, 0.3},
+          {"coulomb1", "N·m", 0.0, 0.0, 1.0, 0.2},
+          {"coulomb2", "N·m", 0.0, 0.0, 1.0, 0.2},
           {"velocity_scale", "rad/s", 0.005, 1e-4, 0.1, 0.005}};
 }
 

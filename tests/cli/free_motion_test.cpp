@@ -98,8 +98,8 @@ TEST(RealFreeMotion, TheFilterLeavesAFreeArmAlone) {
 // its efforts hold beyond the bias table, and filtered with them — taken out
 // of the effort, their σ the learned arm torque's prior — the arm is still
 // left alone (issue 26's bounds). Measured: J = 0.217 ± 0.009 and
-// 0.164 ± 0.021 kg·m², the effort's RMS beyond the table 0.351 / 0.208 →
-// 0.049 / 0.076 N·m; filtered: median 0.0023 mm, 97.0 % within 2σ (p95 0.92
+// 0.165 ± 0.021 kg·m², the effort's RMS beyond the table 0.350 / 0.208 →
+// 0.049 / 0.075 N·m; filtered: median 0.0023 mm, 97.0 % within 2σ (p95 0.95
 // mm against 0.27 with the table alone: docs/validation.md section 13).
 TEST(RealFreeMotion, TheArmsDynamicsIdentifiedOnItsFreeMotion) {
   const fs::path dir = FreshDirectory("real_free_motion_dynamics");

@@ -41,6 +41,27 @@ TEST(ConsideredVariance, JointFrictionsIsItsDerivativesTimesTheStatedSdInClosedF
             Eigen::Vector2d::Zero());
 }
 
+// The learned effects' share comes apart (the filter carries it itself where
+// it learns the arm's torque): with friction learned and an inertia of σ 0.02
+// beside it, the share is the friction's closed form above, the total adds
+// (a·σ_J)².
+TEST(ConsideredVariance, TheLearnedEffectsShareComesApart) {
+  const std::vector<double> sd = {0.05, 0.04, 0.01, 0.02, 0.001};
+  ExtraEffects effects({Friction(sd), {"joint_inertia", {"inertia1", "inertia2"}, {0.1, 0.2}, {0.02, 0.0}}});
+  models::JointState<double> state;
+  state.velocity_rad_s << 0.01, -0.004;
+  state.acceleration_rad_s2 << 3.0, 1.0;
+  const Eigen::Vector2d friction_only =
+      ExtraEffects({Friction(sd)}).ConsideredVariance(state, models::Channel::kInternalTorque);
+  effects.SetLearned({"joint_friction"});
+  Eigen::Vector2d learned;
+  const Eigen::Vector2d total =
+      effects.ConsideredVariance(state, models::Channel::kInternalTorque, &learned);
+  for (int j = 0; j < 2; ++j) EXPECT_NEAR(learned[j], friction_only[j], 1e-15) << j;
+  EXPECT_NEAR(total[0], friction_only[0] + std::pow(3.0 * 0.02, 2), 1e-15);
+  EXPECT_NEAR(total[1], friction_only[1], 1e-15);
+}
+
 // A file without σ (hand-written, or σ 0) considers nothing: the consumers
 // then treat the effect as known, as before.
 TEST(ConsideredVariance, NoStatedSdIsNoVariance) {

@@ -41,12 +41,15 @@ class ExtraEffects {
   /// differentiated with EffectJet. A consumer that treats the parameters as
   /// known adds it to that channel's noise (a consider parameter whose error is
   /// taken as independent from row to row). 0 when every σ is 0. Never allocates.
+  /// learned_part (optional): the share of it from the effects SetLearned names.
   Eigen::Vector2d ConsideredVariance(const models::JointState<double>& state,
-                                     models::Channel channel) const;
+                                     models::Channel channel,
+                                     Eigen::Vector2d* learned_part = nullptr) const;
 
-  /// The named effects' σ leave ConsideredVariance: a consumer that carries
-  /// their doubt itself (the filter's learned arm torque). Allocates.
-  void DropConsidered(const std::vector<std::string>& names);
+  /// The named effects, whose doubt a consumer may carry itself where it
+  /// learns them (the filter's arm torque, on the rows it teaches it): their
+  /// share of ConsideredVariance is also returned apart. Allocates.
+  void SetLearned(const std::vector<std::string>& names);
   /// Each effect with its parameter values, in the catalogue's order (for
   /// consumers that evaluate them with Jets, such as the filter).
   const std::vector<std::unique_ptr<EffectModel>>& models() const { return models_; }
@@ -56,6 +59,7 @@ class ExtraEffects {
   std::vector<std::unique_ptr<EffectModel>> models_;
   std::vector<std::vector<double>> values_;
   std::vector<std::vector<double>> sd_;  // the file's σ, in the catalogue's order
+  std::vector<bool> learned_;            // SetLearned, per effect
   // An effect's values as Jets, parameters first…first+7 seeded (one pass of
   // ConsideredVariance); passes whose σ are all 0 are left out.
   struct SeededPass {
