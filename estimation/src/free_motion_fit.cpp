@@ -335,6 +335,13 @@ FreeMotionFit FitEffectsOnFreeMotion(const std::vector<NamedLog>& logs,
     CollectRows(*named.log, int(out.logs.size()), parameters, others, &rows);
     out.logs.push_back(named.path);
   }
+  if (!out.logs.empty() && rows.size() < 100) {
+    throw io::InputError(all_paths, 0, 0,
+                         "the free motion has " + std::to_string(rows.size()) +
+                             " rows with finite angles, depth and efforts, too few to fit the "
+                             "arm's dynamics on",
+                         "record the efforts (tau1, tau2) while the arm moves freely");
+  }
   if (out.logs.empty()) {
     throw io::InputError(all_paths, 0, 0,
                          "no log holds a second of free motion (a joint faster than 0.05 rad/s "
