@@ -163,6 +163,27 @@ void BM_FilterStepFriction(benchmark::State& state) {
   TimeSteps(state, [&](const FilterSample& s) { benchmark::DoNotOptimize(filter.Step(s)); });
 }
 
+// Online (as BM_FilterStepContact) with the arm's dynamics identified on its
+// free motion (the real PSM2 bag's joint_inertia and joint_friction,
+// docs/decisions/arm-dynamics-from-free-motion.md): taken out of the effort,
+// and, Arg 1, their σ the learned torque's prior with the considered share
+// apart. What they cost on top of BM_FilterStepContact.
+void BM_FilterStepArmDynamics(benchmark::State& state) {
+  auto parameters = pliant::models::testing::PaperParameters();
+  const bool sd = state.range(0) != 0;
+  parameters.effects.push_back(
+      {"joint_friction", {"viscous1", "viscous2", "coulomb1", "coulomb2", "velocity_scale"},
+       {0.13, 0.41, 0.137, 0.124, 0.031},
+       sd ? std::vector<double>{0.027, 0.16, 0.015, 0.025, 0.011} : std::vector<double>(5, 0.0)});
+  parameters.effects.push_back({"joint_inertia", {"inertia1", "inertia2"}, {0.217, 0.165},
+                                sd ? std::vector<double>{0.009, 0.021} : std::vector<double>{0, 0}});
+  pliant::estimation::ComplianceFilter filter(parameters);
+  TimeSteps(state, [&](FilterSample s) {
+    s.tip_fixed = false;
+    benchmark::DoNotOptimize(filter.Step(s));
+  });
+}
+
 void BM_DenseFixedEkf(benchmark::State& state) {
   pliant::bench::DenseFixedEkf ekf(pliant::models::testing::PaperParameters(), {});
   TimeSteps(state, [&](const FilterSample& s) {
@@ -205,6 +226,7 @@ BENCHMARK(BM_FilterStepAligned)->Iterations(2'000'000);
 BENCHMARK(BM_FilterStepContact)->Iterations(2'000'000);
 BENCHMARK(BM_FilterStepFriction)->Iterations(2'000'000)->Arg(0)->Arg(1);
 BENCHMARK(BM_FilterStepDeflection)->Iterations(2'000'000)->Arg(0)->Arg(1);
+BENCHMARK(BM_FilterStepArmDynamics)->Iterations(2'000'000)->Arg(0)->Arg(1);
 BENCHMARK(BM_DenseFixedEkf)->Iterations(2'000'000);
 BENCHMARK(BM_DenseDynamicEkf)->Iterations(1'000'000);
 BENCHMARK(BM_Offline900k)->Iterations(1)->Unit(benchmark::kSecond);
