@@ -44,6 +44,23 @@ TEST(ArmFriction, TheLearnedTorqueIsTheCatalogueEffectsTorque) {
   }
 }
 
+// The learned J, f, c start from the options' σ unless the file states the
+// arm's dynamics with σ (identified on free motion): then each joint's own.
+TEST(ArmPriorSd, TheFilesArmDynamicsSetEachJointsPrior) {
+  const FilterOptions o;
+  const Eigen::Vector3d defaults(o.internal_inertia_sd_kg_m2, o.internal_coulomb_sd_nm,
+                                 o.internal_viscous_sd_nm_s);
+  EXPECT_EQ(filter_internal::ArmPriorSd(o, {}, 0), defaults);
+  const std::vector<models::EffectParameters> effects = {
+      {"joint_friction", {"viscous1", "viscous2", "coulomb1", "coulomb2", "velocity_scale"},
+       {0.13, 0.41, 0.137, 0.124, 0.031}, {0.027, 0.16, 0.015, 0.025, 0.011}},
+      {"joint_inertia", {"inertia1", "inertia2"}, {0.217, 0.165}, {0.009, 0.0}}};
+  EXPECT_EQ(filter_internal::ArmPriorSd(o, effects, 0), Eigen::Vector3d(0.009, 0.015, 0.027));
+  // Joint 2's inertia states no σ (0: held at its value): the option's stays.
+  EXPECT_EQ(filter_internal::ArmPriorSd(o, effects, 1),
+            Eigen::Vector3d(o.internal_inertia_sd_kg_m2, 0.025, 0.16));
+}
+
 TEST(ConfineToClearance, ClampsTheClearanceThenTheShaftToIt) {
   const double delta = 0.007;
   double e = 0.02, b = 0.02;  // twice the nominal clearance is the most there is
