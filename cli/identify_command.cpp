@@ -130,9 +130,8 @@ void RequireBiasSweep(const estimation::IdentificationData& data,
 void CheckEffectNames(const std::vector<std::string>& names) {
   // The diagnosis's candidates and the arm's dynamics (fitted from free motion).
   auto candidates = estimation::CandidateEffectNames();
-  for (const auto& name : estimation::EffectCatalogue::Global().Names()) {
-    if (estimation::FittedFromFreeMotion(name) &&
-        std::find(candidates.begin(), candidates.end(), name) == candidates.end())
+  for (const auto& name : estimation::FreeMotionEffectNames()) {
+    if (std::find(candidates.begin(), candidates.end(), name) == candidates.end())
       candidates.push_back(name);
   }
   std::string known;

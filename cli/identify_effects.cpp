@@ -92,10 +92,12 @@ EffectFits FitEffects(const std::vector<std::string>& names, const std::vector<i
         result->parameters, fits.free_motion->fitted,
         "pliant identify on the free motion of " + JoinedPaths(fits.free_motion->logs));
   }
+  // An effect the diagnosis does not fit on a held tip has nowhere else to go.
+  const auto held_fittable = estimation::CandidateEffectNames();
   for (const auto& name : on_held) {
-    if (name == "joint_inertia") {  // nowhere else to fit it
+    if (std::find(held_fittable.begin(), held_fittable.end(), name) == held_fittable.end()) {
       throw io::InputError(JoinedPaths(paths), 0, 0,
-                           "--effect joint_inertia is fitted from free motion, and no log holds a "
+                           "--effect " + name + " is fitted from free motion, and no log holds a "
                            "second of it (a joint faster than 0.05 rad/s, nothing holding the tip)",
                            "add a log of the arm moving freely");
     }

@@ -133,6 +133,21 @@ class PriorCost final : public ceres::CostFunction {
   std::vector<models::ParameterSpec> specs_;
 };
 
+}  // namespace
+
+ceres::ResidualBlockId AddEffectPrior(ceres::Problem* problem, double* block,
+                                      const EffectModel& effect) {
+  const auto specs = effect.Parameters();
+  const ceres::ResidualBlockId id = problem->AddResidualBlock(new PriorCost(specs), nullptr, block);
+  for (std::size_t k = 0; k < specs.size(); ++k) {
+    problem->SetParameterLowerBound(block, int(k), specs[k].lower_bound);
+    problem->SetParameterUpperBound(block, int(k), specs[k].upper_bound);
+  }
+  return id;
+}
+
+namespace {
+
 double ValueOf(double x) { return x; }
 double ValueOf(const EffectJet& x) { return x.a; }
 
@@ -283,14 +298,8 @@ FitResult FitTerms(const Problem& problem, const BaseModel& model, const std::ve
   for (auto& values : result.parameters) blocks.push_back(values.data());
   const ceres::ResidualBlockId residual_block = ceres_problem.AddResidualBlock(
       new ResidualCost(problem, model, terms, fixed.size(), samples), nullptr, blocks);
-  for (std::size_t t = 0; t < fitted.size(); ++t) {
-    const auto specs = fitted[t].effect->Parameters();
-    ceres_problem.AddResidualBlock(new PriorCost(specs), nullptr, blocks[t]);
-    for (std::size_t k = 0; k < specs.size(); ++k) {
-      ceres_problem.SetParameterLowerBound(blocks[t], int(k), specs[k].lower_bound);
-      ceres_problem.SetParameterUpperBound(blocks[t], int(k), specs[k].upper_bound);
-    }
-  }
+  for (std::size_t t = 0; t < fitted.size(); ++t)
+    AddEffectPrior(&ceres_problem, blocks[t], *fitted[t].effect);
   ceres::Solver::Options options;
   options.linear_solver_type = ceres::DENSE_QR;
   options.max_num_iterations = 60;

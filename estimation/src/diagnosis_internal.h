@@ -16,6 +16,7 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <ceres/problem.h>
 
 #include "pliant/estimation/diagnosis.h"
 #include "pliant/estimation/effect_catalogue.h"
@@ -276,6 +277,11 @@ std::array<double, 2> ContributionSizeMm(const Problem& problem, const BaseModel
 Term MakeTerm(const std::string& name);
 /// The log channels an effect reads, in the log's names.
 std::vector<std::string> ChannelsOf(const EffectModel& effect);
+/// The catalogue's Gaussian prior ((p − default)/prior_sd) and bounds on
+/// `block`, an effect's parameters in a Ceres problem (model-based rows: the
+/// clustered sandwich keeps them out of every cluster).
+ceres::ResidualBlockId AddEffectPrior(ceres::Problem* problem, double* block,
+                                      const EffectModel& effect);
 /// `added` fitted jointly (with problem.added_refit) on every compared row, their
 /// σ from a clustered sandwich over the segments; `fixed` receives them at
 /// the fitted values.

@@ -123,28 +123,6 @@ class BlockCost final : public ceres::CostFunction {
   Eigen::Vector2d sd_;
 };
 
-// The catalogue's prior on one effect's parameters: (p − default)/prior_sd.
-class PriorCost final : public ceres::CostFunction {
- public:
-  explicit PriorCost(const std::vector<models::ParameterSpec>& specs) : specs_(specs) {
-    set_num_residuals(int(specs.size()));
-    mutable_parameter_block_sizes()->push_back(int(specs.size()));
-  }
-  bool Evaluate(double const* const* p, double* residuals, double** jacobians) const override {
-    const int n = num_residuals();
-    for (int k = 0; k < n; ++k) {
-      residuals[k] = (p[0][k] - specs_[std::size_t(k)].default_value) / specs_[std::size_t(k)].prior_sd;
-      if (jacobians && jacobians[0]) {
-        for (int i = 0; i < n; ++i) jacobians[0][k * n + i] = i == k ? 1.0 / specs_[std::size_t(k)].prior_sd : 0.0;
-      }
-    }
-    return true;
-  }
-
- private:
-  std::vector<models::ParameterSpec> specs_;
-};
-
 // Consecutive rows of one log, each at most block_s long.
 std::vector<std::pair<std::size_t, std::size_t>> Blocks(const std::vector<FreeRow>& rows,
                                                         double block_s) {
@@ -176,16 +154,7 @@ Fit Solve(const std::vector<FreeRow>& rows, const std::vector<std::unique_ptr<Ef
   options.cost_function_ownership = ceres::TAKE_OWNERSHIP;
   ceres::Problem problem(options);
   std::vector<double*> blocks;
-  for (std::size_t e = 0; e < effects.size(); ++e) {
-    const auto specs = effects[e]->Parameters();
-    double* v = start.values[e].data();
-    problem.AddParameterBlock(v, int(specs.size()));
-    for (std::size_t k = 0; k < specs.size(); ++k) {
-      problem.SetParameterLowerBound(v, int(k), specs[k].lower_bound);
-      problem.SetParameterUpperBound(v, int(k), specs[k].upper_bound);
-    }
-    blocks.push_back(v);
-  }
+  for (auto& values : start.values) blocks.push_back(values.data());
   std::vector<ceres::ResidualBlockId> ids;
   std::vector<int> cluster_of_row;
   const auto chunks = Blocks(rows, block_s);
@@ -196,7 +165,7 @@ Fit Solve(const std::vector<FreeRow>& rows, const std::vector<std::unique_ptr<Ef
     cluster_of_row.insert(cluster_of_row.end(), 2 * (last - first), int(b));
   }
   for (std::size_t e = 0; e < effects.size(); ++e) {
-    ids.push_back(problem.AddResidualBlock(new PriorCost(effects[e]->Parameters()), nullptr, blocks[e]));
+    ids.push_back(diagnosis::AddEffectPrior(&problem, blocks[e], *effects[e]));
     cluster_of_row.insert(cluster_of_row.end(), effects[e]->Parameters().size(), -1);
   }
   ceres::Solver::Options solver;
@@ -223,8 +192,22 @@ Fit Solve(const std::vector<FreeRow>& rows, const std::vector<std::unique_ptr<Ef
   return out;
 }
 
+// The residual's autocorrelation at `lag` rows (consecutive rows of one log).
+double Autocorrelation(const std::vector<FreeRow>& rows, const Eigen::VectorXd& residual, int j,
+                       std::size_t lag, double variance) {
+  double sum = 0.0;
+  for (std::size_t i = lag; i < rows.size(); ++i) {
+    if (rows[i].log == rows[i - lag].log && rows[i].used[j] && rows[i - lag].used[j])
+      sum += residual[Eigen::Index(2 * i + j)] * residual[Eigen::Index(2 * (i - lag) + j)];
+  }
+  return sum / variance;
+}
+
 // The residual's correlation time, s: the first lag whose autocorrelation
-// (over consecutive rows of one log, both joints) falls below 1/e.
+// (over consecutive rows of one log, both joints) falls below 1/e — found by
+// doubling the lag, then halving the bracket (the autocorrelation taken as
+// falling): O(n log lag), where every lag in turn would cost O(n·lag) on a
+// long log at 1.5 kHz.
 double CorrelationSeconds(const std::vector<FreeRow>& rows, const Eigen::VectorXd& residual) {
   double worst = 0.0;
   for (int j = 0; j < 2; ++j) {
@@ -237,18 +220,18 @@ double CorrelationSeconds(const std::vector<FreeRow>& rows, const Eigen::VectorX
       ++n;
     }
     if (n < 20 || !(variance > 0.0)) continue;
-    const double dt = dt_sum / double(n - 1);
-    for (std::size_t lag = 1; lag < n / 10; ++lag) {
-      double sum = 0.0;
-      for (std::size_t i = lag; i < rows.size(); ++i) {
-        if (rows[i].log == rows[i - lag].log && rows[i].used[j] && rows[i - lag].used[j])
-          sum += residual[Eigen::Index(2 * i + j)] * residual[Eigen::Index(2 * (i - lag) + j)];
-      }
-      if (sum / variance < std::exp(-1.0)) {
-        worst = std::max(worst, double(lag) * dt);
-        break;
-      }
+    const auto below = [&](std::size_t lag) {
+      return Autocorrelation(rows, residual, j, lag, variance) < std::exp(-1.0);
+    };
+    std::size_t high = 1;
+    while (high < n / 10 && !below(high)) high *= 2;
+    if (high >= n / 10) continue;  // never decorrelates within a tenth of the log
+    std::size_t low = high / 2;    // above 1/e there (or 0)
+    while (high - low > 1) {
+      const std::size_t mid = (low + high) / 2;
+      (below(mid) ? high : low) = mid;
     }
+    worst = std::max(worst, double(high) * dt_sum / double(n - 1));
   }
   return worst;
 }
@@ -302,6 +285,13 @@ bool FittedFromFreeMotion(const std::string& name) {
   const auto channels = diagnosis::ChannelsOf(*effect);
   return !channels.empty() && std::all_of(channels.begin(), channels.end(),
                                           [](const std::string& c) { return kMotion.count(c) > 0; });
+}
+
+std::vector<std::string> FreeMotionEffectNames() {
+  std::vector<std::string> names;
+  for (const auto& name : EffectCatalogue::Global().Names())
+    if (FittedFromFreeMotion(name)) names.push_back(name);
+  return names;
 }
 
 double FreeMotionSeconds(const io::Log& log) {

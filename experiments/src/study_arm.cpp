@@ -3,7 +3,6 @@
 #include <string>
 #include <vector>
 
-#include "pliant/estimation/effect_catalogue.h"
 #include "pliant/estimation/free_motion_fit.h"
 #include "pliant/experiments/montecarlo_trial.h"
 #include "pliant/experiments/simulator.h"
@@ -18,9 +17,7 @@ std::vector<models::EffectParameters> IdentifyArmDynamics(const Study& study) {
   // Its own stream: the trials' (TrialStream(seed, k)) never reach this far.
   TrialStream stream(study.seed, std::uint64_t(1) << 62);
   const io::Log log = Simulate(arm, stream.Next()).log;
-  std::vector<std::string> names;
-  for (const auto& name : estimation::EffectCatalogue::Global().Names())
-    if (estimation::FittedFromFreeMotion(name)) names.push_back(name);
+  const std::vector<std::string> names = estimation::FreeMotionEffectNames();
   const models::ModelParameters nominal =
       NominalParameters(study, study.scenario.truth.bias_reference_depth_m);
   const auto fit = estimation::FitEffectsOnFreeMotion({{&log, arm.name}}, nominal, names);

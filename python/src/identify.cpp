@@ -8,7 +8,6 @@
 #include <pybind11/stl.h>
 
 #include "bindings.h"
-#include "pliant/estimation/effect_catalogue.h"
 #include "pliant/estimation/effect_fit.h"
 #include "pliant/estimation/free_motion_fit.h"
 #include "pliant/estimation/identification_report.h"
@@ -76,10 +75,8 @@ py::tuple IdentifyArmDynamics(const std::vector<std::string>& logs, const Parame
     for (const auto& path : logs) read.push_back(io::ReadLog(path, {skip_bad_rows}));
     std::vector<estimation::NamedLog> named;
     for (std::size_t i = 0; i < read.size(); ++i) named.push_back({&read[i], logs[i]});
-    std::vector<std::string> names;
-    for (const auto& name : estimation::EffectCatalogue::Global().Names())
-      if (estimation::FittedFromFreeMotion(name)) names.push_back(name);
-    fit = estimation::FitEffectsOnFreeMotion(named, parameters, names);
+    fit = estimation::FitEffectsOnFreeMotion(named, parameters,
+                                             estimation::FreeMotionEffectNames());
   }
   std::string paths;
   for (const auto& path : fit.logs) paths += (paths.empty() ? "" : ", ") + path;

@@ -48,6 +48,10 @@ struct FreeMotionFit {
 /// holds beyond the bias table.
 bool FittedFromFreeMotion(const std::string& name);
 
+/// The catalogue's effects that FittedFromFreeMotion, in its order (the arm's
+/// dynamics: joint_friction, joint_inertia, and any a user registers alike).
+std::vector<std::string> FreeMotionEffectNames();
+
 /// Seconds of rows in `log` where the tip is not held (no tip_fixed = 1) and
 /// a joint moves faster than 0.05 rad/s: 0 for a quasi-static log.
 double FreeMotionSeconds(const io::Log& log);
