@@ -72,7 +72,7 @@ io::InputError OptionError(const std::string& error) {
       {"external_torque_rate_nm", "--torque-rate"}, {"compliance_scale_sd", "--compliance-sd"},
       {"gate_probability", "--gate"},            {"mismatch_window", "--mismatch-window"},
       {"inertial_torque_error", "--inertial-error"}, {"unloaded_start_s", "--unloaded-start"},
-      {"reference_noise_rad", "--fuse-reference"}};
+      {"reference_noise_rad", "--fuse-reference"}, {"motor_inertia_kg_m2", "--motor-inertia"}};
   std::string problem = error;
   const std::string prefix = "FilterOptions::";
   if (problem.rfind(prefix, 0) == 0) problem.erase(0, prefix.size());
@@ -112,7 +112,10 @@ void RunFilter(FilterCommandOptions o) {
   io::CheckOutputFile(o.output_path, "-o");
   auto parameters = io::ReadParameters(o.params_path);
   std::string error;
-  if (!o.filter.IsValid(&error)) throw OptionError(error);
+  if (!o.filter.IsValid(&error) ||
+      !(error = estimation::OptionsAgainstParameters(parameters, o.filter)).empty()) {
+    throw OptionError(error);
+  }
   const auto log = io::CheckLogPlausibilityAndWarn(o.input_path, {o.skip_bad_rows});
   CheckUnloadedStart(o.filter.unloaded_start_s, log.DurationS());
   // The same tare as pliant correct's, written into the parameters' bias.
@@ -173,7 +176,8 @@ Command AddFilterCommand(CLI::App& app) {
   sub->add_option("--motor-inertia", f.motor_inertia_kg_m2,
                   "Motor-side inertia J of joints 1-2, kg·m²: J·θ̈ is taken out of the effort "
                   "while the tip is held (0: off; the simulator's arm has 0.08). For logs at the "
-                  "full 1.5 kHz rate: θ̈ cannot be estimated from a subsampled log")
+                  "full 1.5 kHz rate: θ̈ cannot be estimated from a subsampled log. Not beside a parameters "
+                  "file's joint_inertia, which the filter uses instead")
       ->capture_default_str();
   sub->add_option("--shaft-damping", f.shaft_damping_nm_s_per_rad,
                   "The instrument shaft's damping c_s, N·m·s/rad: with the tip held and the shaft "

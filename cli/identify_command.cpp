@@ -224,6 +224,7 @@ void RunIdentify(const IdentifyOptions& options) {
   result.parameters.description = "identified by pliant identify (" + result.method + ", " +
                                    options.law + ") from " + std::to_string(options.logs.size()) +
                                    " log(s)";
+  const std::string description = result.parameters.description;  // before the effects' note
   EffectFits effects = FitEffects(options.effects, logs, options.logs, &result);
   const models::ModelParameters named = effects.any()
                                             ? WithOnlyTheNamed(result.parameters, options.effects)
@@ -238,7 +239,6 @@ void RunIdentify(const IdentifyOptions& options) {
       estimation::AppendSamples(estimation::WithoutInternalTorque(logs[i], named),
                                 options.logs[i], {}, &without);
     }
-    const std::string description = result.parameters.description;
     result = Fit(options, method, without, prior);
     result.parameters.description = description;
     effects = FitEffects(options.effects, logs, options.logs, &result);

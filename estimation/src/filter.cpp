@@ -4,7 +4,6 @@
 #include "pliant/estimation/filter.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <stdexcept>
 
@@ -58,7 +57,9 @@ ComplianceFilter::Impl::Impl(const models::ModelParameters& p, const FilterOptio
   const std::string why = models::ValidateParameters(p);
   if (!why.empty()) throw std::invalid_argument(why);
   std::string error;
-  if (!o.IsValid(&error)) throw std::invalid_argument(error);
+  if (!o.IsValid(&error) || !(error = OptionsAgainstParameters(p, o)).empty()) {
+    throw std::invalid_argument(error);
+  }
   options.deflection_model_error = o.DeflectionModelError();  // NaN resolved once
   // A quasi-static log has no dynamics to read: no inertial torque, no damping.
   if (o.quasi_static) options.motor_inertia_kg_m2 = options.shaft_damping_nm_s_per_rad = 0.0;
@@ -319,9 +320,7 @@ void ComplianceFilter::Impl::Repair(int j, const FilterSample& sample, bool full
   // the effort's change is the load's, which a held tip's β would otherwise
   // take (effort_offset_bound_sd).
   const double offset_bound = options.effort_offset_bound_sd * uncertainty[j].effort_offset_sd_nm;
-  if (offset_bound > 0.0) {
-    s.mean[kOffset] = std::clamp(s.mean[kOffset], -offset_bound, offset_bound);
-  }
+  if (offset_bound > 0.0) s.mean[kOffset] = std::clamp(s.mean[kOffset], -offset_bound, offset_bound);
   // One sum is finite exactly when every entry is (a NaN or an infinity
   // carries through; a sum beyond the double range needs the repair too),
   // and it vectorises where allFinite() tests 42 entries one by one.

@@ -3,12 +3,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <string>
 
 #include <Eigen/Cholesky>
 #include <ceres/jet.h>
 
 #include "pliant/models/effects/joint_friction.h"
 #include "pliant/models/effects/joint_inertia.h"
+#include "pliant/estimation/filter.h"
 
 namespace pliant::estimation::filter_internal {
 
@@ -137,3 +140,24 @@ void InternalTorque::Teach(const Batch& batch, double memory_s) {
 }
 
 }  // namespace pliant::estimation::filter_internal
+
+namespace pliant::estimation {
+
+std::string OptionsAgainstParameters(const models::ModelParameters& parameters,
+                                     const FilterOptions& options) {
+  if (!(options.motor_inertia_kg_m2 > 0.0)) return "";
+  for (const auto& e : parameters.effects) {
+    if (e.name != models::JointInertiaEffect::kInfo.name) continue;
+    char text[320];
+    std::snprintf(text, sizeof text,
+                  "FilterOptions::motor_inertia_kg_m2 = %g beside the parameters' joint_inertia, "
+                  "which the filter already takes out of every effort: J·θ̈ would count twice "
+                  "with the tip held \u2014 set it to 0 and keep the file's identified inertia, "
+                  "or remove joint_inertia from the parameters",
+                  options.motor_inertia_kg_m2);
+    return text;
+  }
+  return "";
+}
+
+}  // namespace pliant::estimation

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -46,7 +47,20 @@ TEST(IdentifyFreeMotion, RecoversTheSimulatedArmsInertiaAndFriction) {
     EXPECT_LT(std::abs(value - truth), 3.0 * sd) << name << " = " << value << " ± " << sd;
     EXPECT_LT(sd, 0.25 * truth) << name << " is informed";
   }
-  EXPECT_TRUE(fs::exists(dir / "arm.json"));
+  // The file says once what fitted them (the base is fitted twice: without
+  // the effects' torque the second time).
+  std::ifstream file(dir / "arm.json");
+  const std::string description = nlohmann::json::parse(file).at("description");
+  const auto first = description.find("fitted by");
+  ASSERT_NE(first, std::string::npos) << description;
+  EXPECT_EQ(description.find("fitted by", first + 1), std::string::npos) << description;
+  // The file's inertia is the filter's: the motor inertia option beside it
+  // would take J·θ̈ out twice, and is bad input.
+  const auto twice = RunIn(dir, kCli + " filter --params arm.json free.csv --motor-inertia 0.08 -o f.csv");
+  EXPECT_EQ(twice.exit_code, 2) << twice.err;
+  EXPECT_NE(twice.err.find("--motor-inertia"), std::string::npos) << twice.err;
+  EXPECT_NE(twice.err.find("set it to 0"), std::string::npos) << twice.err;
+  EXPECT_FALSE(fs::exists(dir / "f.csv"));
 }
 
 TEST(IdentifyFreeMotion, InertiaWithoutFreeMotionIsBadInput) {

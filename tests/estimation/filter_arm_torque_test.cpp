@@ -2,12 +2,15 @@
 // friction columns are the catalogue's joint_friction (ArmFriction), and the
 // filter and the dense baselines confine the shaft with one function.
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include <gtest/gtest.h>
 
 #include "../../estimation/src/filter_internal_torque.h"
 #include "pliant/estimation/filter.h"
 #include "pliant/models/effects/joint_friction.h"
+#include "paper_parameters.h"
 
 namespace pliant::estimation {
 namespace {
@@ -59,6 +62,23 @@ TEST(ArmPriorSd, TheFilesArmDynamicsSetEachJointsPrior) {
   // Joint 2's inertia states no σ (0: held at its value): the option's stays.
   EXPECT_EQ(filter_internal::ArmPriorSd(o, effects, 1),
             Eigen::Vector3d(o.internal_inertia_sd_kg_m2, 0.025, 0.16));
+}
+
+// A held tip's J·θ̈ is taken out once: the option's motor inertia beside a
+// file's identified joint_inertia is refused, by name, and each alone is not.
+TEST(OptionsAgainstParameters, TheMotorInertiaBesideTheFilesInertiaIsRefused) {
+  models::ModelParameters parameters = models::testing::PaperParameters();
+  FilterOptions o;
+  o.motor_inertia_kg_m2 = 0.08;
+  EXPECT_EQ(OptionsAgainstParameters(parameters, o), "");
+  EXPECT_NO_THROW(ComplianceFilter(parameters, o));
+  parameters.effects.push_back({"joint_inertia", {"inertia1", "inertia2"}, {0.217, 0.165}, {0.009, 0.021}});
+  const std::string why = OptionsAgainstParameters(parameters, o);
+  EXPECT_NE(why.find("motor_inertia_kg_m2 = 0.08"), std::string::npos) << why;
+  EXPECT_NE(why.find("\u2014 set it to 0"), std::string::npos) << why;
+  EXPECT_THROW(ComplianceFilter(parameters, o), std::invalid_argument);
+  o.motor_inertia_kg_m2 = 0.0;
+  EXPECT_NO_THROW(ComplianceFilter(parameters, o));
 }
 
 TEST(ConfineToClearance, ClampsTheClearanceThenTheShaftToIt) {

@@ -165,10 +165,17 @@ struct FilterTransition {
   bool predicted = false;           ///< false on the first sample (prior only)
 };
 
+/// Why these options cannot filter with these parameters ("" when they can):
+/// FilterOptions::motor_inertia_kg_m2 beside a file's joint_inertia would
+/// take J·θ̈ out of a held tip's effort twice.
+std::string OptionsAgainstParameters(const models::ModelParameters& parameters,
+                                     const FilterOptions& options);
+
 class ComplianceFilter {
  public:
   /// Throws std::invalid_argument when the parameters fail
-  /// models::ValidateParameters or the options fail IsValid (with the reason).
+  /// models::ValidateParameters or the options fail IsValid or
+  /// OptionsAgainstParameters (with the reason).
   ComplianceFilter(const models::ModelParameters& parameters, const FilterOptions& options = {});
   ~ComplianceFilter();
   ComplianceFilter(const ComplianceFilter&);
