@@ -22,6 +22,22 @@ struct Line {
   int points = 0;
 };
 
+// Which held tip each sample is on, counted over the logs: a hold begins
+// where a log begins or a held sample follows a free one. A clamped beam's
+// loops at one depth are one clamp; each divot push, reached through free
+// motion, is another, with its own tip angle.
+std::vector<int> ClampOf(const IdentificationData& data) {
+  std::vector<int> clamp(data.samples.size(), 0);
+  int count = 0;
+  for (std::size_t i = 0; i < data.samples.size(); ++i) {
+    const auto& s = data.samples[i];
+    const bool begins = i == 0 || s.log != data.samples[i - 1].log || !data.samples[i - 1].tip_fixed;
+    if (s.tip_fixed && begins) ++count;
+    clamp[i] = count;
+  }
+  return clamp;
+}
+
 Line FitLine(const std::vector<double>& q, const std::vector<double>& tau) {
   Line line;
   line.points = int(q.size());
@@ -111,16 +127,19 @@ IdentificationResult RunPaperProcedure(const IdentificationData& data,
   std::vector<std::string> names;
   std::vector<std::string> clamped_backlash;  // warnings for a crossed pair of branch lines
   std::vector<std::pair<std::vector<int>, Eigen::MatrixXd>> blocks;
+  const std::vector<int> clamp = ClampOf(data);
   for (int j = 0; j < 2; ++j) {
-    // Per log and depth (one clamp): the two branches' (position, effort)
-    // points. Two logs are two clamps: their lines need not coincide.
-    std::map<std::pair<int, long>, std::array<std::vector<double>, 4>> depths;  // q+, tau+, q−, tau−
-    std::map<std::pair<int, long>, std::pair<double, int>> reference;  // Σ tau_ref, count
+    // Per clamp and depth: the two branches' (position, effort) points. Two
+    // clamps are two tips: their lines need not coincide, and a depth's
+    // pushes from many tips are no lines at all (their scatter is the tips').
+    using Key = std::pair<int, long>;  // clamp, depth
+    std::map<Key, std::array<std::vector<double>, 4>> depths;  // q+, tau+, q−, tau−
+    std::map<Key, std::pair<double, int>> reference;  // Σ tau_ref, count
     for (std::size_t i = 0; i < data.samples.size(); ++i) {
       const int side = branches.side[j][i];
       if (side == 0) continue;
       const auto& s = data.samples[i];
-      const std::pair<int, long> key{s.log, detail::DepthKey(s.insertion_depth_m, options.depth_resolution_m)};
+      const Key key{clamp[i], detail::DepthKey(s.insertion_depth_m, options.depth_resolution_m)};
       auto& d = depths[key];
       d[side > 0 ? 0 : 2].push_back(s.angle_rad[j]);
       d[side > 0 ? 1 : 3].push_back(s.effort_nm[j]);
