@@ -11,7 +11,8 @@ error beyond it, in quadrature, that the added effect removes, and "above the
 noise" the same beyond the log's own noise floor as the diagnosis reads it
 (`noise_floor`, from the residual alone: what a user without a control has).
 
-Usage: hit_rate.py PLIANT_BINARY OUT_DIR [--seed N] [--case NAME ...] [instrument options]
+Usage: hit_rate.py PLIANT_BINARY OUT_DIR [--seed N] [--case NAME ...] [--identify-with-test]
+                   [instrument options]
 
 The instrument options (--k-scale K1 K2, --clearance D1 D2, --take-up W,
 --noise-scale X, --rate HZ) go to generate.py: the hit rate on instruments
@@ -53,6 +54,9 @@ def main():
     parser.add_argument("out_dir")
     parser.add_argument("--seed", type=int, default=11)
     parser.add_argument("--case", action="append", choices=generate.CASES)
+    parser.add_argument("--identify-with-test", action="store_true",
+                        help="identify on the calibration and the test log together (the effect "
+                             "in both, the test log's pushes from many tips beside the clamps)")
     args, instrument = parser.parse_known_args()
     cases = args.case or generate.CASES
     subprocess.run([sys.executable, os.path.join(HERE, "generate.py"), args.out_dir,
@@ -64,7 +68,10 @@ def main():
     for case in cases:
         d = os.path.join(args.out_dir, case)
         params = os.path.join(d, "identified.json")
-        _, error = run([args.pliant, "identify", os.path.join(d, "calibration.csv"), "-o", params])
+        logs = [os.path.join(d, "calibration.csv")]
+        if args.identify_with_test:
+            logs.append(os.path.join(d, "test.csv"))
+        _, error = run([args.pliant, "identify", *logs, "-o", params])
         if error:
             print("| %s | identify failed: %s | | | | | |" % (case, error))
             continue
