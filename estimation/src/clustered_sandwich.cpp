@@ -92,6 +92,22 @@ void EvaluateJacobian(ceres::Problem* problem, const std::vector<double*>& block
   *residuals = Eigen::Map<const Eigen::VectorXd>(r.data(), Eigen::Index(r.size()));
 }
 
+SandwichCovariance BlockedSandwich(const Eigen::SparseMatrix<double>& jacobian,
+                                   const Eigen::VectorXd& residuals,
+                                   const std::vector<int>& cluster_of_row,
+                                   const std::vector<Eigen::Index>& wanted, int min_clusters) {
+  SandwichCovariance out = ClusteredSandwich(jacobian, residuals, cluster_of_row, wanted);
+  std::vector<int> merged(cluster_of_row.size());
+  // Run lengths about √2 apart: 2, 3, 4, 6, 8, 12, …
+  for (int run = 2; out.clusters / run >= min_clusters; run = run % 3 == 0 ? run * 4 / 3 : run * 3 / 2) {
+    for (std::size_t r = 0; r < merged.size(); ++r)
+      merged[r] = cluster_of_row[r] < 0 ? -1 : cluster_of_row[r] / run;
+    const SandwichCovariance longer = ClusteredSandwich(jacobian, residuals, merged, wanted);
+    out.clustered = NotBelow(out.clustered, longer.clustered);
+  }
+  return out;
+}
+
 Eigen::MatrixXd NotBelow(const Eigen::MatrixXd& a, const Eigen::MatrixXd& floor) {
   // In units of the floor's sd: the parameters' scales differ by 10¹⁵ (a law
   // coefficient against a clearance in rad), beyond what one eigenvalue

@@ -41,6 +41,17 @@ SandwichCovariance ClusteredSandwich(const Eigen::SparseMatrix<double>& jacobian
                                      const std::vector<int>& cluster_of_row,
                                      const std::vector<Eigen::Index>& wanted);
 
+/// The blocking method (Flyvbjerg & Petersen, J. Chem. Phys. 1989): a
+/// cluster must outlast the errors' correlation, which the residual's own
+/// autocorrelation understates when white noise hides a slow misfit. The
+/// sandwich is taken over `cluster_of_row`'s clusters and over runs of 2, 3,
+/// 4, 6, 8, … consecutive ones while at least `min_clusters` remain; the
+/// result is not below any of them (NotBelow), `clustered` of the first.
+SandwichCovariance BlockedSandwich(const Eigen::SparseMatrix<double>& jacobian,
+                                   const Eigen::VectorXd& residuals,
+                                   const std::vector<int>& cluster_of_row,
+                                   const std::vector<Eigen::Index>& wanted, int min_clusters);
+
 /// The robustified Jacobian (tangent space, columns in the order of `blocks`;
 /// blocks not listed are held constant) and residuals of `problem`, rows in the
 /// order of `residual_blocks` (all when empty).

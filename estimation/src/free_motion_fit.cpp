@@ -186,7 +186,9 @@ Fit Solve(const std::vector<FreeRow>& rows, const std::vector<std::unique_ptr<Ef
   Eigen::Index column = 0;
   for (std::size_t e = 0; e + 1 < effects.size(); ++e)
     for (std::size_t k = 0; k < effects[e]->Parameters().size(); ++k) wanted.push_back(column++);
-  const auto sandwich = detail::ClusteredSandwich(jacobian, r, cluster_of_row, wanted);
+  // Longer blocks too, while ten remain: the residual's correlation time
+  // misses a slow misfit that white noise hides (detail::BlockedSandwich).
+  const auto sandwich = detail::BlockedSandwich(jacobian, r, cluster_of_row, wanted, 10);
   const Eigen::MatrixXd floor = covariance_floor * sandwich.model;
   out.covariance = out.clusters >= 2 ? detail::NotBelow(sandwich.clustered, floor) : floor;
   return out;

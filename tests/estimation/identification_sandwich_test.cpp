@@ -41,6 +41,31 @@ TEST(ClusteredSandwich, TheMeanOfClusteredRowsHasTheLiangZegerVariance) {
   EXPECT_EQ(s.model(1, 1), 0.0);
 }
 
+// A mean over 120 rows in 24 clusters of 5 whose errors alternate in runs of
+// 30 rows: the clusters are shorter than the errors' correlation and their
+// sandwich is small. The blocking takes runs of 2, 3, 4, 6, 8 clusters
+// (while three remain) and keeps the largest, the 6-cluster runs', whose
+// scores are ±30: 4/3 · 4 · 30² / 120².
+TEST(ClusteredSandwich, TheBlockingKeepsTheLongestRunsVarianceWhereErrorsOutlastTheClusters) {
+  const int n = 120;
+  Eigen::SparseMatrix<double> jacobian(n, 1);
+  Eigen::VectorXd residuals(n);
+  std::vector<int> cluster(n);
+  for (int i = 0; i < n; ++i) {
+    jacobian.insert(i, 0) = 1.0;
+    residuals[i] = (i / 30) % 2 == 0 ? 1.0 : -1.0;
+    cluster[i] = i / 5;
+  }
+  const auto base = detail::ClusteredSandwich(jacobian, residuals, cluster, {0});
+  EXPECT_NEAR(base.clustered(0, 0), 24.0 / 23.0 * 24 * 25.0 / (n * n), 1e-14);
+  const auto blocked = detail::BlockedSandwich(jacobian, residuals, cluster, {0}, 3);
+  EXPECT_NEAR(blocked.clustered(0, 0), 4.0 / 3.0 * 4 * 900.0 / (n * n), 1e-14);
+  EXPECT_EQ(blocked.clusters, 24);
+  // Ten clusters at the least: runs of 2 (12 clusters) only, scores ±10.
+  const auto few = detail::BlockedSandwich(jacobian, residuals, cluster, {0}, 10);
+  EXPECT_NEAR(few.clustered(0, 0), 12.0 / 11.0 * 12 * 100.0 / (n * n), 1e-14);
+}
+
 TEST(ClusteredSandwich, NotBelowRaisesOnlyTheDirectionsUnderTheFloor) {
   Eigen::Matrix2d a, floor;
   a << 4.0, 0.0, 0.0, 0.25;
