@@ -8,6 +8,7 @@
 #include <set>
 
 #include "diagnosis_internal.h"
+#include "pliant/estimation/free_motion_fit.h"
 #include "pliant/estimation/filter_log.h"
 #include "pliant/estimation/jacobian_check.h"
 #include "pliant/io/input_error.h"
@@ -201,11 +202,10 @@ std::vector<std::string> CandidateEffectNames() {
   static const std::set<std::string> kBaseModel = {"bias_torque",       "compliance",
                                                    "backlash_sign",     "backlash_deadzone",
                                                    "backlash_hysteresis", "bias_torque_fourier"};
-  // Fitted from free motion (identify --effect): a held tip hardly accelerates.
-  static const std::set<std::string> kFreeMotion = {"joint_inertia"};
+  // The arm's inertia is fitted from free motion (ReadsOnlyTheAcceleration).
   std::vector<std::string> names;
   for (const auto& name : EffectCatalogue::Global().Names()) {
-    if (!kBaseModel.count(name) && !kFreeMotion.count(name)) names.push_back(name);
+    if (!kBaseModel.count(name) && !ReadsOnlyTheAcceleration(name)) names.push_back(name);
   }
   return names;
 }

@@ -59,6 +59,7 @@ EffectCatalogue& EffectCatalogue::Global() {
     c->Add<models::HeldFrictionEffect>();
     // Fitted from free motion (identify --effect on a log without a held tip).
     c->Add<models::JointInertiaEffect>();
+    c->Add<models::JointInertiaCouplingEffect>();
     return c;
   }();
   return *catalogue;

@@ -279,14 +279,24 @@ std::vector<EffectFinding> Findings(const std::vector<std::unique_ptr<EffectMode
 
 }  // namespace
 
-bool FittedFromFreeMotion(const std::string& name) {
+namespace {
+// An internal torque that reads only these channels (ChannelsOf).
+bool ReadsOnly(const std::string& name, const std::set<std::string>& allowed) {
   if (!EffectCatalogue::Global().Contains(name)) return false;
   const auto effect = EffectCatalogue::Global().Create(name);
   if (effect->Info().channel != models::Channel::kInternalTorque) return false;
-  static const std::set<std::string> kMotion = {"v1", "v2", "d2q1/dt2", "d2q2/dt2"};
   const auto channels = diagnosis::ChannelsOf(*effect);
   return !channels.empty() && std::all_of(channels.begin(), channels.end(),
-                                          [](const std::string& c) { return kMotion.count(c) > 0; });
+                                          [&](const std::string& c) { return allowed.count(c) > 0; });
+}
+}  // namespace
+
+bool FittedFromFreeMotion(const std::string& name) {
+  return ReadsOnly(name, {"v1", "v2", "d2q1/dt2", "d2q2/dt2"});
+}
+
+bool ReadsOnlyTheAcceleration(const std::string& name) {
+  return ReadsOnly(name, {"d2q1/dt2", "d2q2/dt2"});
 }
 
 std::vector<std::string> FreeMotionEffectNames() {

@@ -29,6 +29,13 @@ std::vector<ParameterSpec> JointInertiaEffect::Parameters() const {
   return {{"inertia1", "kg·m²", 0.0, 0.0, 2.0, 0.3}, {"inertia2", "kg·m²", 0.0, 0.0, 2.0, 0.3}};
 }
 
+std::vector<ParameterSpec> JointInertiaCouplingEffect::Parameters() const {
+  // A tenth of the diagonal's prior: off the diagonal a serial arm's mass
+  // matrix is smaller than on it (the real PSM2's cross terms explain < 1 %
+  // of its free effort, docs/decisions/arm-dynamics-from-free-motion.md).
+  return {{"inertia12", "kg·m²", 0.0, -1.0, 1.0, 0.03}};
+}
+
 std::vector<ParameterSpec> EffortDriftEffect::Parameters() const {
   // Thermal settling of motors and current sensors: minutes.
   return {{"drift1", "N·m", 0.0, -0.5, 0.5, 0.05},

@@ -91,6 +91,6 @@ def test_identify_arm_dynamics_on_the_real_free_motion(tmp_path):
         assert after < 0.5 * before
     assert report["rows"] == 3420 and report["blocks"] >= 5
     saved = json.loads((tmp_path / "arm.json").read_text())
-    assert set(saved["effects"]) == {"joint_inertia", "joint_friction"}
+    assert set(saved["effects"]) == {"joint_inertia", "joint_inertia_coupling", "joint_friction"}
     with pytest.raises(pliant.InputError, match="free motion"):
         pliant.identify_arm_dynamics(data("real/jhu2017_clamped_j1.csv"), params)

@@ -85,11 +85,19 @@ OnlineFigures RunOnline(const Study& study, int trials) {
 
 TEST(FamilyStudy, OnlineTheArmsIdentifiedDynamicsBringTheFilterBelowEquation2) {
   const Study arm = ReadStudy(PLIANT_SOURCE_DIR "/experiments/studies/families_1500hz_online_arm.json");
-  ASSERT_EQ(arm.arm_effects.size(), 2u);
-  const auto& inertia = arm.arm_effects[1];  // the plant's 0.08 kg·m², identified
-  ASSERT_EQ(inertia.name, "joint_inertia");
+  // Every effect the catalogue fits from free motion: friction, the inertia
+  // (the plant's 0.08 kg·m²) and its coupling (the plant has none).
+  ASSERT_EQ(arm.arm_effects.size(), 3u);
+  const auto named = [&](const std::string& name) {
+    for (const auto& e : arm.arm_effects)
+      if (e.name == name) return e;
+    ADD_FAILURE() << "no " << name;
+    return arm.arm_effects.front();
+  };
+  const auto inertia = named("joint_inertia"), coupling = named("joint_inertia_coupling");
   for (int j = 0; j < 2; ++j)
     EXPECT_LT(std::abs(inertia.values[j] - 0.08), 3.0 * inertia.sd[j]) << inertia.values[j];
+  EXPECT_LT(std::abs(coupling.values[0]), 3.0 * coupling.sd[0]) << coupling.values[0];
   const Study without = ReadStudy(PLIANT_SOURCE_DIR "/experiments/studies/families_1500hz_online.json");
   const OnlineFigures before = RunOnline(without, 100), after = RunOnline(arm, 100);
   EXPECT_GT(before.filter_over_equation2, 1.0);

@@ -48,6 +48,10 @@ struct FreeMotionFit {
 /// holds beyond the bias table.
 bool FittedFromFreeMotion(const std::string& name);
 
+/// Whether the effect reads nothing of a row but the joints' acceleration
+/// (joint_inertia, joint_inertia_coupling): a held tip hardly accelerates the
+/// arm, so the diagnosis of held rows does not propose it.
+bool ReadsOnlyTheAcceleration(const std::string& name);
 /// The catalogue's effects that FittedFromFreeMotion, in its order (the arm's
 /// dynamics: joint_friction, joint_inertia, and any a user registers alike).
 std::vector<std::string> FreeMotionEffectNames();
