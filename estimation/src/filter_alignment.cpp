@@ -3,6 +3,8 @@
 // so that each effort meets the J·θ̈ it holds, which the acceleration fit
 // gives only that late. The motor's motion follows the newest sample; Output
 // carries the state's estimate to it and applies the output step limit.
+#include <cmath>
+
 #include "filter_impl.h"
 
 namespace pliant::estimation {
@@ -38,6 +40,11 @@ void ComplianceFilter::Impl::AdvanceMotion(const FilterSample& sample) {
   if (!motion_started) {
     motion_started = true;
     motion_clock.Start(sample);
+    // A log begun mid-motion: the tracker starts at the log's own velocity
+    // where it has one, not at rest (from rest its J·θ̈ swung by N·m for tens
+    // of milliseconds and read a contact, experiments/second_generator/arm.py).
+    for (int j = 0; j < 2; ++j)
+      if (std::isfinite(sample.velocity_rad_s[j])) motion[j].velocity_rad_s = sample.velocity_rad_s[j];
     return;
   }
   bool implausible[2];

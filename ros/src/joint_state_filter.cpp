@@ -28,6 +28,7 @@ bool JointStateFilter::Step(const JointStateIn& in, JointStateOut* out, std::str
   sample.encoder_rad << in.position[0], in.position[1];
   sample.insertion_depth_m = in.position[2];
   sample.effort_nm << in.effort[0], in.effort[1];
+  if (in.velocity.size() >= 2) sample.velocity_rad_s << in.velocity[0], in.velocity[1];
   const estimation::FilterEstimate estimate = filter_.Step(sample);
   out->position = in.position;
   out->position[0] = estimate.corrected_rad[0];

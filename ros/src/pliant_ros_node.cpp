@@ -71,6 +71,7 @@ class PliantNode {
     in.stamp_ns = static_cast<std::int64_t>(message->header.stamp.toNSec());
     in.position = message->position;
     in.effort = message->effort;
+    in.velocity = message->velocity;
     pliant::ros::JointStateOut out;
     std::string why;
     if (!filter_.Step(in, &out, &why)) {

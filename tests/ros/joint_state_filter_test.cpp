@@ -30,7 +30,7 @@ TEST(JointStateFilter, EveryMessageOfTheRealBagMatchesTheFilterOnItsLogToTheBit)
   const io::Log filtered = io::ReadLog(out);
   const auto& h = filtered.header;
   const int t = h.Index("t"), q1 = h.Index("q1"), q2 = h.Index("q2"), q3 = h.Index("q3");
-  const int tau1 = h.Index("tau1"), tau2 = h.Index("tau2");
+  const int tau1 = h.Index("tau1"), tau2 = h.Index("tau2"), v1 = h.Index("v1"), v2 = h.Index("v2");
   const int c1 = h.Index("q1_corr"), c2 = h.Index("q2_corr"), sd1 = h.Index("q1_sd");
   ASSERT_GT(filtered.Rows(), 3000u);
   JointStateFilter filter(parameters);
@@ -41,6 +41,7 @@ TEST(JointStateFilter, EveryMessageOfTheRealBagMatchesTheFilterOnItsLogToTheBit)
     message.stamp_ns = start_ns + std::llround(row[t] * 1e9);
     message.position = {row[q1], row[q2], row[q3], 0.1, 0.2, 0.3};
     message.effort = {row[tau1], row[tau2], 1.5, 0.0, 0.0, 0.0};
+    message.velocity = {row[v1], row[v2], 0.0, 0.0, 0.0, 0.0};
     JointStateOut corrected;
     std::string why;
     ASSERT_TRUE(filter.Step(message, &corrected, &why)) << why;

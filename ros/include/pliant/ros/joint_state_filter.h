@@ -25,6 +25,9 @@ namespace pliant::ros {
 struct JointStateIn {
   std::int64_t stamp_ns = 0;  ///< header.stamp, ns
   std::vector<double> position, effort;
+  /// The message's velocity (rad/s) where it has joints 1–2's, as the bag
+  /// reader's v1, v2: the file's effects and the motor tracker's start read it.
+  std::vector<double> velocity;
 };
 
 /// What is published for one message.
