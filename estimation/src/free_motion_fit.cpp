@@ -277,9 +277,6 @@ std::vector<EffectFinding> Findings(const std::vector<std::unique_ptr<EffectMode
   return out;
 }
 
-}  // namespace
-
-namespace {
 // An internal torque that reads only these channels (ChannelsOf).
 bool ReadsOnly(const std::string& name, const std::set<std::string>& allowed) {
   if (!EffectCatalogue::Global().Contains(name)) return false;
