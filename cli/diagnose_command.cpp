@@ -14,6 +14,7 @@
 #include "pliant/estimation/effect_catalogue.h"
 #include "pliant/experiments/diagnosis_report.h"
 #include "pliant/io/atomic_file.h"
+#include "pliant/io/file_checksum.h"
 #include "pliant/io/input_error.h"
 #include "pliant/io/log_reader.h"
 #include "pliant/io/log_plausibility.h"
@@ -118,8 +119,11 @@ void RunDiagnose(DiagnoseCommandOptions o) {
   const auto files =
       experiments::WriteDiagnosisReport(o.report_dir, log, diagnosis, {o.log_path, o.params_path});
   if (!o.write_params_path.empty()) {
-    io::WriteParameters(o.write_params_path,
-                        estimation::WithDiagnosedEffects(parameters, diagnosis, o.log_path));
+    // The added effects were fitted on this log: the file says so.
+    models::ModelParameters written =
+        estimation::WithDiagnosedEffects(parameters, diagnosis, o.log_path);
+    io::AddSourceLogs({o.log_path}, &written);
+    io::WriteParameters(o.write_params_path, written);
   }
   progress.reset();  // the line is erased before the summary
   if (!o.json) {

@@ -21,6 +21,7 @@
 #include "pliant/estimation/identification_report.h"
 #include "pliant/estimation/joint_smoother.h"
 #include "pliant/experiments/plot.h"
+#include "pliant/io/file_checksum.h"
 #include "pliant/io/input_error.h"
 #include "pliant/io/log_reader.h"
 #include "pliant/io/log_plausibility.h"
@@ -244,6 +245,9 @@ void RunIdentify(const IdentifyOptions& options) {
     effects = FitEffects(options.effects, logs, options.logs, &result);
     data = std::move(without);  // (the report and the figures show what the base read)
   }
+  // Which logs: a diagnosis of one of them then says that what this fit took
+  // up does not show in its residual (docs/diagnose.md).
+  result.parameters.identified_from = io::SourceLogs(options.logs);
   io::WriteParameters(options.output_path, result.parameters);
   std::FILE* out = SummaryStream(options.output_path);
   const auto laws = estimation::CompareLaws(result);

@@ -252,8 +252,7 @@ Diagnosis Diagnose(const io::Log& log, const std::string& log_path,
   for (const auto& name : options.added_effects) added.push_back(diagnosis::MakeTerm(name));
   std::vector<std::string> names = options.candidates.empty() ? CandidateEffectNames() : options.candidates;
 
-  // The file's own effects are part of the model compared (an --add of one
-  // of them fits it again instead).
+  // The file's own effects are part of the model compared (an --add fits one again).
   diagnosis::BaseModel model(parameters, options.added_effects);
   // An added deflection effect on a wide take-up is fitted as the probe
   // compares candidates: from the clearance's take-up on, with it refitted.
@@ -264,6 +263,7 @@ Diagnosis Diagnose(const io::Log& log, const std::string& log_path,
     problem.notes.push_back("the parameters hold " + t.name +
                             ": it is part of the model compared, not a candidate");
   }
+  diagnosis::NoteFittedOnThisLog(parameters, log_path, &problem.notes);
   diagnosis::SetRecalibration(model, options.recalibrate_base, &problem);
   if (take_up) diagnosis::FitAddedWithTheTakeUp(model, &problem);
   const std::vector<bool> all(problem.groups, true);

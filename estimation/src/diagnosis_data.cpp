@@ -6,6 +6,7 @@
 #include <map>
 
 #include "diagnosis_internal.h"
+#include "pliant/io/file_checksum.h"
 #include "pliant/io/input_error.h"
 #include "pliant/estimation/effect_inputs.h"
 #include "pliant/estimation/extra_effects.h"
@@ -348,6 +349,21 @@ Problem BuildProblem(const io::Log& log, const std::string& log_path, const Base
                                         reference_sd * reference_sd);
   }
   return problem;
+}
+
+// Parameters identified on the log they diagnose have taken up what they
+// could of any effect in it (the bias table's depth terms a drift in time on
+// a log that visits its depths in order, K(L) and δ a stiffening): the
+// residual shows only the rest, and a missing effect may read as none.
+void NoteFittedOnThisLog(const models::ModelParameters& parameters, const std::string& log_path,
+                         std::vector<std::string>* notes) {
+  const auto log = io::FittedOn(parameters.identified_from, log_path);
+  if (!log) return;
+  notes->push_back("the parameters were fitted on this log (their identified_from: " + log->file +
+                   ", the same CRC-32): what that fit took up of an effect leaves no residual "
+                   "here, so an effect may be missed \u2014 diagnose against parameters "
+                   "identified on a separate calibration log (pliant identify CALIBRATION.csv "
+                   "-o P.json)");
 }
 
 }  // namespace pliant::estimation::diagnosis

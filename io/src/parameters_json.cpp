@@ -243,6 +243,29 @@ class Reader {
     Fail(pointer, why, std::string("correct the value") + kSeeDocs);
   }
 
+  // "identified_from": [{"file": "calibration.csv", "crc32": "89abcdef"}, …]
+  std::vector<models::SourceLog> SourceLogs(const json& logs) const {
+    const char* example = "write [{\"file\": \"calibration.csv\", \"crc32\": \"89abcdef\"}], "
+                          "or leave identified_from out";
+    if (!logs.is_array()) {
+      Fail("/identified_from", "identified_from must be an array, found " + TypeName(logs),
+           example);
+    }
+    std::vector<models::SourceLog> out;
+    for (std::size_t i = 0; i < logs.size(); ++i) {
+      const std::string at = "/identified_from/" + std::to_string(i);
+      Object(logs[i], at, {{"file", true}, {"crc32", true}});
+      const std::string crc = String(logs[i].at("crc32"), at + "/crc32");
+      if (crc.size() != 8 || crc.find_first_not_of("0123456789abcdef") != std::string::npos) {
+        Fail(at + "/crc32", Dotted(at + "/crc32") + " is '" + crc + "', not 8 hex digits",
+             "write the CRC-32 of the log's bytes in lower-case hex, as pliant identify does");
+      }
+      out.push_back({String(logs[i].at("file"), at + "/file"),
+                     static_cast<std::uint32_t>(std::stoul(crc, nullptr, 16))});
+    }
+    return out;
+  }
+
   // "effects": {"NAME": {"PARAMETER": {"value": v, "sd": s}, …}, …}
   std::vector<models::EffectParameters> Effects(const json& effects) const {
     if (!effects.is_object()) {
@@ -284,6 +307,7 @@ models::ModelParameters ParseParameters(const std::string& text, const std::stri
                 {{"format", true},
                  {"version", true},
                  {"description", false},
+                 {"identified_from", false},
                  {"joint1", true},
                  {"joint2", true},
                  {"covariance", false},
@@ -303,6 +327,9 @@ models::ModelParameters ParseParameters(const std::string& text, const std::stri
   models::ModelParameters parameters;
   if (document.contains("description")) {
     parameters.description = reader.String(document.at("description"), "/description");
+  }
+  if (document.contains("identified_from")) {
+    parameters.identified_from = reader.SourceLogs(document.at("identified_from"));
   }
   parameters.joints[0] = reader.Joint(document.at("joint1"), "/joint1");
   parameters.joints[1] = reader.Joint(document.at("joint2"), "/joint2");

@@ -1,5 +1,6 @@
 // Writing parameters files: the inverse of parameters_json.cpp, key for key.
 
+#include <cstdio>
 #include <set>
 #include <stdexcept>
 #include <vector>
@@ -76,6 +77,15 @@ nlohmann::ordered_json OrderedJson(const models::ModelParameters& parameters) {
   out["format"] = kParametersFormat;
   out["version"] = kParametersVersion;
   out["description"] = parameters.description;
+  if (!parameters.identified_from.empty()) {
+    nlohmann::ordered_json logs = nlohmann::ordered_json::array();
+    for (const auto& log : parameters.identified_from) {
+      char crc[9];
+      std::snprintf(crc, sizeof crc, "%08x", static_cast<unsigned>(log.crc32));
+      logs.push_back({{"file", log.file}, {"crc32", crc}});
+    }
+    out["identified_from"] = logs;
+  }
   out["joint1"] = JointToJson(parameters.joints[0]);
   out["joint2"] = JointToJson(parameters.joints[1]);
   if (parameters.covariance) {

@@ -12,6 +12,7 @@
 #include "pliant/estimation/free_motion_fit.h"
 #include "pliant/estimation/identification_report.h"
 #include "pliant/estimation/joint_smoother.h"
+#include "pliant/io/file_checksum.h"
 #include "pliant/io/input_error.h"
 #include "pliant/io/log_reader.h"
 
@@ -59,6 +60,7 @@ py::tuple Identify(const std::vector<std::string>& logs, const std::string& meth
   }
   result.parameters.description = "identified by pliant identify (" + result.method + ", " +
                                   law + ") from " + std::to_string(logs.size()) + " log(s)";
+  result.parameters.identified_from = io::SourceLogs(logs);  // as the command records them
   const auto report =
       estimation::IdentificationJson(result, data, estimation::CompareLaws(result));
   return py::make_tuple(result.parameters, ToPython(report));
@@ -80,8 +82,9 @@ py::tuple IdentifyArmDynamics(const std::vector<std::string>& logs, const Parame
   }
   std::string paths;
   for (const auto& path : fit.logs) paths += (paths.empty() ? "" : ", ") + path;
-  const auto with = estimation::WithFittedEffects(
+  auto with = estimation::WithFittedEffects(
       parameters, fit.fitted, "pliant.identify_arm_dynamics on the free motion of " + paths);
+  io::AddSourceLogs(logs, &with);
   return py::make_tuple(with, ToPython(estimation::FreeMotionFitJson(fit)));
 }
 

@@ -185,15 +185,21 @@ TEST(DiagnoseCommand, WithTheHeldFrictionInTheFileTheRealClampsLackTheDepthBias)
 
 // Joint 2's real clamps show no clearance beyond the held friction (δ
 // identified 0): there is no take-up for the probe to look into, and
-// nothing is significant on its 14 depths.
+// nothing is significant on its 14 depths. The file was identified on these
+// very clamps (its identified_from holds their CRC-32), and the diagnosis
+// says that what the fit took up cannot show here.
 TEST(DiagnoseCommand, TheRealJoint2ClampsWithoutAClearanceAreNotProbed) {
   const auto r = DiagnoseRealClamps("diagnose_real_j2", 2, "");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = Summary(r);
   EXPECT_TRUE(j["missing_effect"].is_null()) << r.out;
+  int fitted_on_this_log = 0;
   for (const auto& note : j["notes"]) {
     EXPECT_EQ(note.get<std::string>().find("take the clearance up over"), std::string::npos) << note;
+    fitted_on_this_log += note.get<std::string>().find(
+                              "the parameters were fitted on this log (their identified_from: ") == 0;
   }
+  EXPECT_EQ(fitted_on_this_log, 1) << j["notes"];
 }
 
 // The shipped log hides deflection_coupling (data/README.md): the diagnosis
@@ -223,6 +229,10 @@ TEST(DiagnoseCommand, FindsTheShippedLogsHiddenEffectAndWritesTheReport) {
   EXPECT_TRUE(fs::exists(dir / "report" / "index.html"));
   EXPECT_TRUE(fs::exists(dir / "report" / "summary.json"));
   EXPECT_EQ(j["report"], (dir / "report" / "index.html").string());
+  // data/paper.json records no log it was fitted on: nothing to say of it.
+  for (const auto& note : j["notes"]) {
+    EXPECT_EQ(note.get<std::string>().find("fitted on this log"), std::string::npos) << note;
+  }
 }
 
 TEST(DiagnoseCommand, AddingTheEffectRefitsAndTheErrorFalls) {

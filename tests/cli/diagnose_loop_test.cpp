@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "pliant/io/file_checksum.h"
 #include "pliant/io/log_reader.h"
 #include "pliant/io/parameters_json.h"
 #include "loaded_rms_error.h"
@@ -37,6 +38,10 @@ TEST(DiagnoseLoop, TheWrittenParametersCorrectALogTheDiagnosisNeverSaw) {
   EXPECT_NEAR(written.effects[0].values[0], 0.006, 0.0003);  // k12, rad/(N·m)
   EXPECT_NEAR(written.effects[0].values[1], 0.004, 0.0003);  // k21
   EXPECT_GT(written.effects[0].sd[0], 0.0);
+  // The coupling was fitted on the diagnosed log: the file records it.
+  ASSERT_EQ(written.identified_from.size(), 1u);
+  EXPECT_EQ(written.identified_from[0].file, kHiddenLog);
+  EXPECT_EQ(written.identified_from[0].crc32, io::FileCrc32(kHiddenLog));
 
   // Another log with the same instrument and effect, another seed and depth.
   const auto sim = RunIn(

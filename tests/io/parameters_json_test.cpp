@@ -219,8 +219,8 @@ TEST(ParametersJson, UnknownKeysAreNamedWithTheAllowedOnes) {
   const std::string top = PaperWith("\"version\": 1,", "\"version\": 1,\n  \"Joint1\": {},");
   EXPECT_EQ(ErrorOf(top),
             "p.json:4:3: unknown key 'Joint1' in the top-level object; allowed "
-            "keys: format, version, description, joint1, joint2, covariance, effects \u2014 "
-            "remove the key or correct its spelling");
+            "keys: format, version, description, identified_from, joint1, joint2, covariance, "
+            "effects \u2014 remove the key or correct its spelling");
 }
 
 TEST(ParametersJson, MissingRequiredKey) {

@@ -3,6 +3,7 @@
 // Read and written as JSON by pliant::io (docs/parameters.md).
 
 #include <array>
+#include <cstdint>
 #include <cmath>
 #include <map>
 #include <optional>
@@ -99,8 +100,18 @@ struct EffectParameters {
   std::vector<double> sd;  ///< 0 for a parameter held at its value
 };
 
+/// A log the parameters were fitted on (`pliant identify`, `diagnose
+/// --write-params`): the path as given and the CRC-32 of its bytes, so that a
+/// diagnosis can tell when it reads the very log the parameters took an effect
+/// up from (docs/parameters.md, "identified_from").
+struct SourceLog {
+  std::string file;
+  std::uint32_t crc32 = 0;
+};
+
 struct ModelParameters {
   std::string description;
+  std::vector<SourceLog> identified_from;  ///< empty: not recorded (a hand-written file)
   std::array<JointParameters, 2> joints;  ///< [0] joint 1 (yaw), [1] joint 2 (pitch)
   std::optional<ParameterCovariance> covariance;
   std::vector<EffectParameters> effects;  ///< applied by correct and the filter alike
