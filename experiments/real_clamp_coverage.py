@@ -7,7 +7,8 @@ within a depth; its median corrected angle stands in for it (127–155 rows a de
 median's own error is small beside the σ). Printed per log: the share of rows whose corrected
 angle lies within 1.96 of its stated σ of that median, overall, on the first three poses of
 each depth (the shaft starts where the last depth left it, and the bias torque was recorded on
-another day) and on the rest.
+another day) and on the rest; with the filter's default and with the bias table's doubt
+(`--effort-offset-sd 0.02`; docs/decisions/effort-offset-on-real-arms.md).
 
 Usage: real_clamp_coverage.py PLIANT OUT_DIR   (a few seconds)
 """
@@ -56,15 +57,24 @@ def main():
                           capture_output=True, text=True)
     if done.returncode != 0:
         sys.exit(done.stderr)
-    print("log (held-out depths)  rows  within 1.96 σ of the depth's median: all / first %d poses "
-          "/ the rest   median σ" % FIRST_POSES)
-    for joint in (1, 2):
-        for half in (0, 1):
-            name = "test_j%d_%d.csv" % (joint, half)
-            path = os.path.join(work, name)
-            n, all_rows, first, rest, sd = coverage(path, path + ".filter.csv", joint)
-            print("%-22s %5d  %5.1f / %5.1f / %5.1f %%   %.2f mrad" %
-                  (name, n, all_rows, first, rest, 1e3 * sd))
+    for title, flags in (("the default (the bias table taken as exact)", None),
+                         ("--effort-offset-sd 0.02 (the table's doubt)", ["--effort-offset-sd", "0.02"])):
+        print(title)
+        print("log (held-out depths)  rows  within 1.96 σ of the depth's median: all / first %d "
+              "poses / the rest   median σ" % FIRST_POSES)
+        for joint in (1, 2):
+            for half in (0, 1):
+                name = "test_j%d_%d.csv" % (joint, half)
+                path = os.path.join(work, name)
+                filtered = path + ".filter.csv"
+                if flags:  # the same held-out half and parameters, with the option
+                    filtered = path + ".offset.csv"
+                    subprocess.run([pliant, "filter", "--quiet", "--params",
+                                    os.path.join(work, "params_%d.json" % half), path, "-o",
+                                    filtered] + flags, check=True, capture_output=True)
+                n, all_rows, first, rest, sd = coverage(path, filtered, joint)
+                print("%-22s %5d  %5.1f / %5.1f / %5.1f %%   %.2f mrad" %
+                      (name, n, all_rows, first, rest, 1e3 * sd))
 
 
 if __name__ == "__main__":
