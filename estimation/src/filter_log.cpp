@@ -11,6 +11,7 @@
 
 #include "pliant/estimation/effort_noise.h"
 #include "pliant/estimation/filter_smoother.h"
+#include "pliant/io/file_checksum.h"
 #include "pliant/io/log_reader.h"
 #include "pliant/io/log_writer.h"
 #include "scratch_file.h"
@@ -92,6 +93,10 @@ FilterOptions UsedOptions(const models::ModelParameters& parameters, const Filte
   }
   const std::string arm = ArmDynamicsAdvice(parameters, used, header);
   if (!arm.empty()) summary->advice.push_back(arm);
+  if (const auto fitted = io::FittedOn(parameters.identified_from, path)) {  // (identify's record)
+    summary->notes.push_back("the parameters were fitted on this log (" + fitted->file +
+                             "): what it says of their errors is in-sample");
+  }
   return EffortNoiseForLog(used, prefix.effort_nm, &summary->notes, &summary->advice);
 }
 

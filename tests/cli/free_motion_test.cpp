@@ -142,6 +142,11 @@ TEST(RealFreeMotion, TheArmsDynamicsIdentifiedOnItsFreeMotion) {
                                      "/data/divot.csv' -o '" + (dir / "divot.csv").string() + "'",
                                  dir);
   EXPECT_EQ(hinted.out.find(advice), std::string::npos) << hinted.out;
+  // The file was identified on this very bag (its identified_from): the
+  // summary says its figures are in-sample; the paper's file records no log.
+  const std::string in_sample = "the parameters were fitted on this log (";
+  EXPECT_NE(r.out.find(in_sample), std::string::npos) << r.out;
+  EXPECT_EQ(without.out.find(in_sample), std::string::npos) << without.out;
 }
 
 }  // namespace
