@@ -10,7 +10,8 @@ each depth (the shaft starts where the last depth left it, and the bias torque w
 another day) and on the rest; with the filter's default and with the bias table's doubt
 (`--effort-offset-sd 0.02`; docs/decisions/effort-offset-on-real-arms.md).
 
-Usage: real_clamp_coverage.py PLIANT OUT_DIR   (a few seconds)
+Usage: real_clamp_coverage.py PLIANT OUT_DIR   (10 s; CLAMPED_CV: the path of clamped_cv.py if it
+is not at ../shared/tools/)
 """
 import os
 import subprocess
@@ -19,7 +20,8 @@ import sys
 import numpy as np
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-CV = os.path.join(os.path.dirname(REPO), "shared", "tools", "clamped_cv.py")
+CV = os.environ.get("CLAMPED_CV",
+                    os.path.join(os.path.dirname(REPO), "shared", "tools", "clamped_cv.py"))
 REAL = os.path.join(REPO, "data", "real")
 FIRST_POSES = 3
 
@@ -51,6 +53,8 @@ def main():
         sys.exit(__doc__)
     pliant, work = sys.argv[1], sys.argv[2]
     os.makedirs(work, exist_ok=True)
+    if not os.path.isfile(CV):
+        sys.exit("%s not found: set CLAMPED_CV to the path of clamped_cv.py (docs/real-data.md)" % CV)
     logs = [os.path.join(REAL, "jhu2017_%s_j%d.csv" % (kind, j))
             for kind in ("bias", "clamped") for j in (1, 2)]
     done = subprocess.run([sys.executable, CV, pliant] + logs + ["--work", work],

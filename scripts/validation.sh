@@ -91,9 +91,13 @@ if [ -f "$clamped_cv" ]; then
   show /usr/bin/python3 "$clamped_cv" "$pliant" $real_logs --work "$work/cv"
   # shellcheck disable=SC2086
   show /usr/bin/python3 "$clamped_cv" "$pliant" $real_logs --work "$work/cv_paper_form" -- --no-held-friction
+  CLAMPED_CV="$clamped_cv" && export CLAMPED_CV
+  show /usr/bin/python3 experiments/real_clamp_coverage.py "$pliant" "$work/coverage"
 else
   echo "(skipped: $clamped_cv not found; set CLAMPED_CV)"
 fi
+
+show /usr/bin/python3 experiments/real_split_half.py "$pliant" "$work/split"
 
 section "4. The filter on the shipped logs"
 say "$build/bench/filter_accuracy_bench" --params data/paper.json data/divot_push.csv --smooth
