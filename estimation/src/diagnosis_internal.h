@@ -174,12 +174,12 @@ void ProfileGroups(const Problem& problem, std::vector<Eigen::Vector2d>& residua
 /// the filter's, so that both read a log's gaps alike.
 inline const double kTimeGapS = FilterOptions{}.time_gap_s;
 
-/// Builds the problem from a log. Throws io::InputError when there is no
-/// reference (no tip_fixed rows, no q*_ref / q*_true columns).
 /// When the parameters were fitted on this very log (their identified_from
 /// holds its CRC-32), a note that what the fit took up cannot show here.
 void NoteFittedOnThisLog(const models::ModelParameters& parameters, const std::string& log_path,
                          std::vector<std::string>* notes);
+/// Builds the problem from a log. Throws io::InputError when there is no
+/// reference (no tip_fixed rows, no q*_ref / q*_true columns).
 Problem BuildProblem(const io::Log& log, const std::string& log_path, const BaseModel& model,
                      const std::vector<Term>& added, const DiagnoseOptions& options);
 

@@ -17,6 +17,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "pliant/io/log_reader.h"
 #include "run_command.h"
 
 namespace pliant {
@@ -30,26 +31,8 @@ using testing::RunCommand;
 const std::string kCli = PLIANT_CLI;
 const std::string kReal = PLIANT_SOURCE_DIR "/data/real/";
 
-// A canonical log's data rows, and a copy that keeps its comments, header
-// and the rows `keep` accepts (keep(k) for the k-th data row).
-std::vector<std::vector<std::string>> DataRows(const std::string& path,
-                                               std::vector<std::string>* header) {
-  std::istringstream in(ReadText(path));
-  std::vector<std::vector<std::string>> rows;
-  for (std::string line; std::getline(in, line);) {
-    if (line.empty() || line[0] == '#') continue;
-    std::vector<std::string> cells;
-    std::istringstream row(line);
-    for (std::string cell; std::getline(row, cell, ',');) cells.push_back(cell);
-    if (header->empty()) {
-      *header = cells;
-    } else {
-      rows.push_back(cells);
-    }
-  }
-  return rows;
-}
-
+// A copy of a canonical log that keeps its comments, header and the data
+// rows `keep` accepts (keep(k) for the k-th data row, as io::ReadLog counts them).
 void WriteHalf(const std::string& path, const fs::path& out, const std::function<bool(int)>& keep) {
   std::istringstream in(ReadText(path));
   std::ofstream f(out);
@@ -63,14 +46,6 @@ void WriteHalf(const std::string& path, const fs::path& out, const std::function
     }
     if (keep(k++)) f << line << '\n';
   }
-}
-
-int Column(const std::vector<std::string>& header, const std::string& name) {
-  for (std::size_t i = 0; i < header.size(); ++i) {
-    if (header[i] == name) return int(i);
-  }
-  ADD_FAILURE() << "no column " << name;
-  return 0;
 }
 
 struct Agreement {
@@ -93,11 +68,11 @@ TEST(RealSplitHalf, TheClampedBeamsHalvesAgreeWithinTheirSigma) {
     std::string halves;
     for (int j = 1; j <= 2; ++j) {
       const std::string log = kReal + "jhu2017_clamped_j" + std::to_string(j) + ".csv";
-      std::vector<std::string> header;
-      const auto rows = DataRows(log, &header);
-      const int q3 = Column(header, "q3");
+      const io::Log rows = io::ReadLog(log);
+      const int q3 = io::StandardColumns(rows.header).q3;
+      const auto bin = [&](int k) { return std::lround(rows.Value(k, q3) / 0.005); };
       std::set<long> levels;
-      for (const auto& r : rows) levels.insert(std::lround(std::stod(r.at(q3)) / 0.005));
+      for (std::size_t k = 0; k < rows.Rows(); ++k) levels.insert(bin(int(k)));
       std::set<long> chosen;
       int i = 0;
       for (long level : levels) {
@@ -106,7 +81,7 @@ TEST(RealSplitHalf, TheClampedBeamsHalvesAgreeWithinTheirSigma) {
       const fs::path half =
           dir / ("clamped_j" + std::to_string(j) + "_" + std::to_string(parity) + ".csv");
       WriteHalf(log, half, [&](int k) {
-        return chosen.count(std::lround(std::stod(rows.at(k).at(q3)) / 0.005)) > 0;
+        return chosen.count(bin(k)) > 0;
       });
       halves += " '" + half.string() + "'";
     }
@@ -144,14 +119,13 @@ TEST(RealSplitHalf, TheClampedBeamsHalvesAgreeWithinTheirSigma) {
 TEST(RealSplitHalf, TheFreeMotionsHalvesAgreeWithinTheirSigma) {
   const fs::path dir = FreshDirectory("real_split_bag");
   const std::string log = kReal + "crtk2022_psm2_free.csv";
-  std::vector<std::string> header;
-  const auto rows = DataRows(log, &header);
-  const int t = Column(header, "t");
-  const double middle = 0.5 * (std::stod(rows.front().at(t)) + std::stod(rows.back().at(t)));
+  const io::Log rows = io::ReadLog(log);
+  const int t = io::StandardColumns(rows.header).t;
+  const double middle = 0.5 * (rows.Value(0, t) + rows.Value(rows.Rows() - 1, t));
   nlohmann::json effects[2];
   for (int h = 0; h < 2; ++h) {
     const fs::path half = dir / ("half_" + std::to_string(h) + ".csv");
-    WriteHalf(log, half, [&](int k) { return (std::stod(rows.at(k).at(t)) < middle) == (h == 0); });
+    WriteHalf(log, half, [&](int k) { return (rows.Value(k, t) < middle) == (h == 0); });
     const fs::path params = dir / ("half_" + std::to_string(h) + ".json");
     const auto r = RunCommand(kCli + " identify --quiet '" + half.string() +
                                   "' --effect joint_inertia --effect joint_friction -o '" +
