@@ -17,7 +17,7 @@
 #include "pliant/estimation/effect_inputs.h"
 #include "pliant/estimation/extra_effects.h"
 #include "pliant/estimation/free_motion_fit.h"
-#include "pliant/estimation/identification_quasi_static.h"
+#include "pliant/estimation/identify_logs.h"
 #include "pliant/estimation/identification_report.h"
 #include "pliant/estimation/joint_smoother.h"
 #include "pliant/experiments/plot.h"
@@ -82,51 +82,6 @@ void DrawFigure(const estimation::IdentificationResult& r, const std::string& pa
   experiments::WriteFigure(figure, path);
 }
 
-// Parameters the smoother cannot make usable (K outside its physical band, a
-// cubic crossing zero) come from logs that do not determine them: bad input
-// (exit 2), with what to record instead.
-estimation::IdentificationResult RunSmootherOn(const estimation::IdentificationData& data,
-                                               const models::ModelParameters& prior,
-                                               const estimation::JointSmootherOptions& smoother,
-                                               const std::vector<std::string>& logs) {
-  try {
-    return estimation::RunJointSmoother(data, prior, smoother);
-  } catch (const std::runtime_error& e) {
-    const std::string what = e.what();
-    const std::string prefix = "the identified parameters are not usable (";
-    if (what.rfind(prefix, 0) != 0) throw;
-    throw io::InputError(JoinedPaths(logs), 0, 0,
-                         "these logs do not determine the parameters: the fit gives " +
-                             what.substr(prefix.size(), what.rfind(')') - prefix.size()),
-                         "identify from a clamped-beam log over several depths (and a bias "
-                         "sweep), or try another --model law");
-  }
-}
-
-// The paper's procedure starts from the bias torque measured with the tip
-// free (its section 3). Without those rows it would keep the prior's table,
-// with no uncertainty, and K and δ would silently take its error (on
-// data/clamped_beam.csv: K1 +25 % at 48σ, δ negative).
-void RequireBiasSweep(const estimation::IdentificationData& data,
-                      const std::vector<std::string>& logs) {
-  for (int j = 0; j < 2; ++j) {
-    bool held = false, free = false;
-    for (const auto& s : data.samples) {
-      if (!std::isfinite(s.effort_nm[j])) continue;
-      (s.tip_fixed ? held : free) = true;
-    }
-    if (!held || free) continue;
-    throw io::InputError(JoinedPaths(logs), 0, 0,
-                         "the paper's procedure starts from a bias sweep (rows with the tip free), "
-                         "and these logs have none for joint " + std::to_string(j + 1) +
-                             ": its bias torque would be the prior's, with no uncertainty, and K "
-                             "and delta would take its error",
-                         "add the bias-sweep log (e.g. data/bias_sweep.csv), or use --method "
-                         "smoother, which holds the bias at its prior and carries its "
-                         "uncertainty into K and delta");
-  }
-}
-
 // Checked before any log is read, so a typo costs nothing.
 void CheckEffectNames(const std::vector<std::string>& names) {
   // The diagnosis's candidates and the arm's dynamics (fitted from free motion).
@@ -175,20 +130,11 @@ estimation::IdentificationResult Fit(const IdentifyOptions& options, const std::
                                      const estimation::IdentificationData& data,
                                      const models::ModelParameters& prior) {
   io::Progress progress("pliant identify: " + method + " fit");
-  if (method == "quasi_static") {
-    estimation::QuasiStaticOptions quasi;
-    quasi.held_friction = !options.no_held_friction;
-    return estimation::RunQuasiStaticIdentification(data, prior, quasi);
-  }
-  if (method == "paper") {
-    estimation::PaperProcedureOptions paper;
-    paper.law = LawOf(options.law);
-    return estimation::RunPaperProcedure(data, prior, paper);
-  }
-  estimation::JointSmootherOptions smoother;
-  smoother.law = LawOf(options.law);
-  smoother.bias_harmonics = options.harmonics;
-  return RunSmootherOn(data, prior, smoother, options.logs);
+  estimation::IdentifyLogsOptions fit;
+  fit.law = LawOf(options.law);
+  fit.bias_harmonics = options.harmonics;
+  fit.held_friction = !options.no_held_friction;
+  return estimation::IdentifyLogs(data, prior, method, fit, options.logs);
 }
 
 void RunIdentify(const IdentifyOptions& options) {
@@ -202,25 +148,14 @@ void RunIdentify(const IdentifyOptions& options) {
   }
   estimation::IdentificationData data;
   std::vector<io::Log> logs;
-  bool all_quasi_static = true, both_joints = true;
+  estimation::LogKinds kinds;
   for (const auto& path : options.logs) {
     const io::Log log = io::ReadLog(path, {options.skip_bad_rows});
-    all_quasi_static = all_quasi_static && log.header.QuasiStatic();
-    both_joints = both_joints && log.header.JointRecorded(1) && log.header.JointRecorded(2);
+    kinds.Add(log, path);
     estimation::AppendSamples(log, path, {}, &data);
     if (!options.effects.empty()) logs.push_back(log);
   }
-  // Quasi-static means (one row per pose) have no dynamics for the smoother
-  // to read: they get the clamp-by-clamp fit with the held friction.
-  const std::string method =
-      options.method != "auto" ? options.method : (all_quasi_static ? "quasi_static" : "smoother");
-  if (method == "smoother" && !both_joints) {
-    throw io::InputError(JoinedPaths(options.logs), 0, 0,
-                         "the joint smoother needs both joints recorded in every log, and these "
-                         "logs record one joint each",
-                         "use --method quasi_static (or auto)");
-  }
-  if (method == "paper") RequireBiasSweep(data, options.logs);
+  const std::string method = estimation::ResolveIdentifyMethod(options.method, kinds, options.logs);
   estimation::IdentificationResult result = Fit(options, method, data, prior);
   result.parameters.description = "identified by pliant identify (" + result.method + ", " +
                                    options.law + ") from " + std::to_string(options.logs.size()) +
@@ -283,7 +218,8 @@ Command AddIdentifyCommand(CLI::App& app) {
   sub->add_option("--method", options->method,
                   "paper: the paper's procedure; smoother: one Ceres problem with covariance; "
                   "quasi_static: clamp by clamp with the held friction (auto: quasi_static when "
-                  "every log is '# timing: quasi-static', else smoother)")
+                  "every log is '# timing: quasi-static' or one records a single joint, else "
+                  "smoother)")
       ->check(CLI::IsMember({"auto", "paper", "smoother", "quasi_static"}))
       ->capture_default_str();
   sub->add_option("--model", options->law, "Compliance law K(L)")

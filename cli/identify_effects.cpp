@@ -66,12 +66,6 @@ std::string FreeText(const estimation::FreeMotionFit& fit) {
 
 }  // namespace
 
-std::string JoinedPaths(const std::vector<std::string>& logs) {
-  std::string files;
-  for (const auto& log : logs) files += (files.empty() ? "" : ", ") + log;
-  return files;
-}
-
 EffectFits FitEffects(const std::vector<std::string>& names, const std::vector<io::Log>& logs,
                       const std::vector<std::string>& paths,
                       estimation::IdentificationResult* result) {

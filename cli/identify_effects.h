@@ -12,6 +12,7 @@
 #include "pliant/estimation/effect_fit.h"
 #include "pliant/estimation/free_motion_fit.h"
 #include "pliant/estimation/identification.h"
+#include "pliant/estimation/identify_logs.h"
 #include "pliant/io/log.h"
 
 namespace pliant::cli {
@@ -34,7 +35,6 @@ std::string EffectFitsText(const EffectFits& fits);
 /// "free_motion_fit" and "effects_fit" (the held tip's), for identify --json.
 void AddEffectFitsJson(const EffectFits& fits, nlohmann::json* json);
 
-/// The logs, as an error message names them all.
-std::string JoinedPaths(const std::vector<std::string>& logs);
+using estimation::JoinedPaths;  // the logs, as an error message names them all
 
 }  // namespace pliant::cli

@@ -10,7 +10,7 @@ inside its 95 % interval, its median σ, equation (2)'s RMS error and the median
 probability.
 
 Usage: online_onset.py PLIANT OUT_DIR [--seed N] [--peak NM] [--speed RAD_S] [--noise NM]
-                       [--params FILE]
+                       [--every-n-periods N] [--params FILE]
 (a few seconds)
 """
 import argparse
@@ -36,6 +36,8 @@ def main():
     parser.add_argument("--peak", type=float, default=0.35)
     parser.add_argument("--speed", type=float, default=0.045)
     parser.add_argument("--noise", type=float, default=0.025)
+    parser.add_argument("--every-n-periods", type=int, default=1,
+                        help="log every Nth 1.5 kHz period (15: 100 Hz, the 100 Hz family's rate)")
     parser.add_argument("--params", default=os.path.join(REPO, "data", "paper.json"),
                         help="parameters for both commands (default: the true ones, data/paper.json)")
     args = parser.parse_args()
@@ -45,7 +47,8 @@ def main():
     sets = ["hidden_effects={}", "experiment.hold_s=0.5", "experiment.rest_s=0.2",
             "experiment.depths_m=[0.15]", "experiment.peak_torques_nm=[%g]" % args.peak,
             "experiment.speeds_rad_s=[%g]" % args.speed,
-            "sensors.effort_noise_sd_nm=%g" % args.noise]
+            "sensors.effort_noise_sd_nm=%g" % args.noise,
+            "log.every_n_periods=%d" % args.every_n_periods]
     subprocess.run([args.pliant, "simulate", os.path.join(HERE, "scenarios", "divot.json"), "-o",
                     path("log.csv"), "--seed", str(args.seed)] + sum((["--set", s] for s in sets), []),
                    check=True, capture_output=True)

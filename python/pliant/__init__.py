@@ -155,12 +155,15 @@ def filter_log(params, log, output=None, smooth=False, skip_bad_rows=False, **op
     return _through_files(run, log, output, skip_bad_rows)
 
 
-def identify(logs, output=None, method="smoother", law="inverse_cubic", prior=None,
-             harmonics=2, skip_bad_rows=False):
+def identify(logs, output=None, method="auto", law="inverse_cubic", prior=None,
+             harmonics=2, held_friction=True, skip_bad_rows=False):
     """``pliant identify``: compliance K(L) (rad/(N·m)), backlash δ (rad) and bias
     torque (N·m) from log files, with the covariance (docs/identification.md).
 
-    logs: a path or a list of paths. method: 'smoother' or 'paper'. law:
+    logs: a path or a list of paths. method: 'auto' (as the command: 'quasi_static'
+    when every log is quasi-static or one records a single joint, as the real JHU
+    files do; else 'smoother'), 'smoother', 'quasi_static' (clamp by clamp with the
+    held friction; held_friction=False fits the paper's form) or 'paper'. law:
     'inverse_cubic', 'direct_cubic' or 'beam_series'. prior: Parameters (or a
     path) the priors are centred on; default the paper's. output: also save
     the parameters file there. Returns (Parameters, report), the report being
@@ -171,7 +174,7 @@ def identify(logs, output=None, method="smoother", law="inverse_cubic", prior=No
     if prior is not None:
         prior = _parameters(prior)[0]
     parameters, report = _pliant.identify([os.fspath(p) for p in logs], method, law, prior,
-                                          harmonics, skip_bad_rows)
+                                          harmonics, held_friction, skip_bad_rows)
     if output is not None:
         parameters.save(os.fspath(output))
         report["output"] = os.fspath(output)

@@ -11,6 +11,7 @@
 #include "pliant/estimation/effect_fit.h"
 #include "pliant/estimation/free_motion_fit.h"
 #include "pliant/estimation/identification_report.h"
+#include "pliant/estimation/identify_logs.h"
 #include "pliant/estimation/joint_smoother.h"
 #include "pliant/io/file_checksum.h"
 #include "pliant/io/input_error.h"
@@ -30,33 +31,27 @@ models::ComplianceForm LawNamed(const std::string& name) {
 
 py::tuple Identify(const std::vector<std::string>& logs, const std::string& method,
                    const std::string& law, const std::optional<Parameters>& prior,
-                   int harmonics, bool skip_bad_rows) {
-  if (method != "paper" && method != "smoother") {
-    throw io::InputError("method", 0, 0, "unknown method '" + method + "'",
-                         "use 'paper' (the paper's procedure) or 'smoother' (Ceres, covariance)");
-  }
+                   int harmonics, bool held_friction, bool skip_bad_rows) {
   if (logs.empty()) {
     throw io::InputError("logs", 0, 0, "no log given", "give at least one log file");
   }
-  const models::ComplianceForm form = LawNamed(law);
+  estimation::IdentifyLogsOptions options;
+  options.law = LawNamed(law);
+  options.bias_harmonics = harmonics;
+  options.held_friction = held_friction;
   estimation::IdentificationData data;
   estimation::IdentificationResult result;
   {
     py::gil_scoped_release unlocked;
+    estimation::LogKinds kinds;
     for (const auto& path : logs) {
-      estimation::AppendSamples(io::ReadLog(path, {skip_bad_rows}), path, {}, &data);
+      const io::Log log = io::ReadLog(path, {skip_bad_rows});
+      kinds.Add(log, path);
+      estimation::AppendSamples(log, path, {}, &data);
     }
-    const auto& centre = prior ? *prior : estimation::PaperPrior();
-    if (method == "paper") {
-      estimation::PaperProcedureOptions options;
-      options.law = form;
-      result = estimation::RunPaperProcedure(data, centre, options);
-    } else {
-      estimation::JointSmootherOptions options;
-      options.law = form;
-      options.bias_harmonics = harmonics;
-      result = estimation::RunJointSmoother(data, centre, options);
-    }
+    const std::string resolved = estimation::ResolveIdentifyMethod(method, kinds, logs);
+    result = estimation::IdentifyLogs(data, prior ? *prior : estimation::PaperPrior(), resolved,
+                                      options, logs);
   }
   result.parameters.description = "identified by pliant identify (" + result.method + ", " +
                                   law + ") from " + std::to_string(logs.size()) + " log(s)";
@@ -99,14 +94,18 @@ void BindIdentify(py::module_& m) {
         "parameters: the arm's identified Parameters (their bias table is read). Returns "
         "(Parameters with the effects added, report): the report is `--json`'s "
         "'free_motion_fit'. The filter takes their σ as the prior of the arm torque it learns.");
-  m.def("identify", &Identify, py::arg("logs"), py::arg("method") = "smoother",
+  m.def("identify", &Identify, py::arg("logs"), py::arg("method") = "auto",
         py::arg("law") = "inverse_cubic", py::arg("prior") = py::none(),
-        py::arg("harmonics") = 2, py::arg("skip_bad_rows") = false,
+        py::arg("harmonics") = 2, py::arg("held_friction") = true,
+        py::arg("skip_bad_rows") = false,
         "Identifies compliance K(L) (rad/(N·m)), backlash δ (rad) and bias torque τ0(q) (N·m) "
         "from log files, as `pliant identify` does (docs/identification.md).\n\n"
         "logs: paths of canonical logs (free-tip rows feed the bias, tip_fixed rows the "
-        "compliance and backlash). method: 'smoother' (one Ceres problem, full covariance) or "
-        "'paper' (the paper's procedure). law: 'inverse_cubic', 'direct_cubic' or "
+        "compliance and backlash). method: 'auto' (as the command: 'quasi_static' when every "
+        "log is quasi-static or one records a single joint, else 'smoother'), 'smoother' (one "
+        "Ceres problem, full covariance), 'quasi_static' (clamp by clamp with the held "
+        "friction; held_friction=False: the paper's form) or 'paper' (the paper's procedure). "
+        "law: 'inverse_cubic', 'direct_cubic' or "
         "'beam_series'. prior: Parameters the priors are centred on (default: the paper's). "
         "harmonics: Fourier harmonics of the bias torque (smoother). Returns (Parameters, "
         "report): the report is the dict `pliant identify --json` prints (each parameter ± σ, "

@@ -94,3 +94,21 @@ def test_identify_arm_dynamics_on_the_real_free_motion(tmp_path):
     assert set(saved["effects"]) == {"joint_inertia", "joint_inertia_coupling", "joint_friction"}
     with pytest.raises(pliant.InputError, match="free motion"):
         pliant.identify_arm_dynamics(data("real/jhu2017_clamped_j1.csv"), params)
+
+
+def test_identify_takes_the_real_arms_one_joint_logs_as_the_command(tmp_path):
+    """The real JHU 2017 files record one joint each, one row per pose: 'auto' is the
+    clamp-by-clamp fit with the held friction, as `pliant identify` chooses, to the
+    last digit; the joint smoother asked for says which log it cannot take."""
+    real = [data("real/jhu2017_bias_j1.csv"), data("real/jhu2017_clamped_j1.csv")]
+    run_cli("identify", *real, "-o", tmp_path / "cli.json")
+    params, report = pliant.identify(real, output=tmp_path / "mine.json")
+    assert read_bytes(tmp_path / "mine.json") == read_bytes(tmp_path / "cli.json")
+    assert report["method"] == "quasi_static"
+    assert "held_friction" in json.loads((tmp_path / "mine.json").read_text())["effects"]
+    pliant.identify(real, held_friction=False, output=tmp_path / "paper_form.json")
+    assert "held_friction" not in json.loads((tmp_path / "paper_form.json").read_text()).get(
+        "effects", {})
+    with pytest.raises(pliant.InputError, match="jhu2017_bias_j1.csv, .*jhu2017_clamped_j1.csv "
+                                                "record one joint only"):
+        pliant.identify(real, method="smoother")

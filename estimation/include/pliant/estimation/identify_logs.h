@@ -1,0 +1,52 @@
+#pragma once
+// The base identification of log files as `pliant identify` and
+// `pliant.identify` both run it: which method `auto` means for the logs, the
+// logs each method needs, and a fit the logs cannot determine as bad input
+// (io::InputError naming the logs: exit 2, pliant.InputError in Python).
+
+#include <string>
+#include <vector>
+
+#include "pliant/estimation/identification.h"
+#include "pliant/estimation/identification_data.h"
+#include "pliant/io/log.h"
+
+namespace pliant::estimation {
+
+struct IdentifyLogsOptions {
+  std::string method = "auto";  ///< auto, paper, smoother or quasi_static
+  models::ComplianceForm law = models::ComplianceForm::kInverseCubic;
+  int bias_harmonics = 2;     ///< the joint smoother's Fourier harmonics of the bias torque
+  bool held_friction = true;  ///< quasi_static: fit the held friction (false: the paper's form)
+};
+
+/// What `auto` reads of the logs: whether each is a quasi-static log (one
+/// row per pose, `# timing: quasi-static`) and which record one joint only.
+struct LogKinds {
+  bool all_quasi_static = true;
+  std::vector<std::string> single_joint;  ///< paths of the logs that record one joint
+
+  void Add(const io::Log& log, const std::string& path);
+};
+
+/// The method for these logs: `requested` unless it is "auto", which is the
+/// clamp-by-clamp quasi-static fit when every log is quasi-static or one of
+/// them records a single joint (the joint smoother needs both joints of every
+/// log, and reads the dynamics a quasi-static log does not have), else the
+/// joint smoother. The joint smoother asked for on a log of one joint is
+/// io::InputError.
+std::string ResolveIdentifyMethod(const std::string& requested, const LogKinds& kinds,
+                                  const std::vector<std::string>& paths);
+
+/// The fit by `method` (resolved). io::InputError naming `paths` when the
+/// logs cannot determine the parameters, or when the paper's procedure has
+/// no bias sweep to start from.
+IdentificationResult IdentifyLogs(const IdentificationData& data,
+                                  const models::ModelParameters& prior, const std::string& method,
+                                  const IdentifyLogsOptions& options,
+                                  const std::vector<std::string>& paths);
+
+/// "a.csv, b.csv": the logs as an error message names them.
+std::string JoinedPaths(const std::vector<std::string>& paths);
+
+}  // namespace pliant::estimation

@@ -1,0 +1,68 @@
+// pliant identify's method on logs of different kinds (estimation/identify_logs.h):
+// the real JHU 2017 files record one joint each, one row per pose; the real
+// PSM2 bag both joints at 100 Hz. `auto` must take them together, and a
+// method that cannot must say which log it cannot take, exit 2, and write
+// nothing.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "run_command.h"
+
+namespace pliant::testing {
+namespace {
+
+namespace fs = std::filesystem;
+const std::string kCli = PLIANT_CLI;
+const std::string kReal = std::string(PLIANT_SOURCE_DIR) + "/data/real/";
+
+TEST(IdentifyMethod, AutoTakesOneJointPosesBesideABagOfBothJoints) {
+  const auto dir = FreshDirectory("identify_method_auto");
+  const auto r = RunIn(dir, kCli + " identify " + kReal + "jhu2017_bias_j1.csv " + kReal +
+                                "jhu2017_clamped_j1.csv " + kReal +
+                                "crtk2022_psm2_free.csv -o mixed.json --json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(r.out).at("method"), "quasi_static");
+  // Joint 1's clamps identify it as they do alone (docs/validation.md
+  // section 3: K1 at 0.162 m = 0.04237 ± 0.00133): the bag adds its still
+  // rows to the bias table, not a new arm.
+  const auto at = RunIn(dir, kCli + " params mixed.json --depth 0.162");
+  ASSERT_EQ(at.exit_code, 0) << at.err;
+  double k = 0.0, sd = 0.0;
+  const auto line = at.out.find("joint 1  K = ");
+  ASSERT_NE(line, std::string::npos) << at.out;
+  ASSERT_EQ(std::sscanf(at.out.c_str() + line, "joint 1  K = %lf ± %lf", &k, &sd), 2) << at.out;
+  EXPECT_NEAR(k, 0.04237, 2.0 * sd) << at.out;
+  EXPECT_GT(sd, 0.0);
+}
+
+TEST(IdentifyMethod, TheSmootherOnALogOfOneJointIsBadInputNamingIt) {
+  const auto dir = FreshDirectory("identify_method_smoother");
+  const auto r = RunIn(dir, kCli + " identify --method smoother " + kReal +
+                                "jhu2017_bias_j1.csv " + kReal +
+                                "crtk2022_psm2_free.csv -o p.json");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("jhu2017_bias_j1.csv records one joint only — use the method auto or "
+                       "quasi_static"),
+            std::string::npos)
+      << r.err;
+  EXPECT_FALSE(fs::exists(dir / "p.json"));
+}
+
+TEST(IdentifyMethod, PosesWithoutClampsAreBadInputNotAFailure) {
+  const auto dir = FreshDirectory("identify_method_no_clamps");
+  const auto r = RunIn(dir, kCli + " identify " + kReal + "jhu2017_bias_j1.csv -o p.json");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("jhu2017_bias_j1.csv: no joint has clamped (tip_fixed) rows at 5 or more "
+                       "depths — add a clamped-beam log"),
+            std::string::npos)
+      << r.err;
+  EXPECT_FALSE(fs::exists(dir / "p.json"));
+}
+
+}  // namespace
+}  // namespace pliant::testing
