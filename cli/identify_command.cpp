@@ -1,33 +1,23 @@
-// pliant identify: the compliance model from logs, by the paper's procedure or
-// the joint smoother, written as a parameters file with its covariance.
+// pliant identify: the compliance model from logs (estimation/identify_logs.h), written
+// as a parameters file with its covariance, its summary and its figures.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
-#include <optional>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "commands.h"
 #include "identify_effects.h"
 #include "identify_figures.h"
-#include "pliant/estimation/effect_catalogue.h"
-#include "pliant/estimation/effect_fit.h"
-#include "pliant/estimation/effect_inputs.h"
-#include "pliant/estimation/extra_effects.h"
-#include "pliant/estimation/free_motion_fit.h"
 #include "pliant/estimation/identify_logs.h"
 #include "pliant/estimation/identification_report.h"
 #include "pliant/estimation/joint_smoother.h"
 #include "pliant/experiments/plot.h"
-#include "pliant/io/file_checksum.h"
 #include "pliant/io/input_error.h"
-#include "pliant/io/log_reader.h"
 #include "pliant/io/log_plausibility.h"
 #include "pliant/io/output_path.h"
 #include "pliant/io/parameters_json.h"
-#include "pliant/io/progress.h"
 #include "summary_stream.h"
 
 namespace pliant::cli {
@@ -82,63 +72,8 @@ void DrawFigure(const estimation::IdentificationResult& r, const std::string& pa
   experiments::WriteFigure(figure, path);
 }
 
-// Checked before any log is read, so a typo costs nothing.
-void CheckEffectNames(const std::vector<std::string>& names) {
-  // The diagnosis's candidates and the arm's dynamics (fitted from free motion).
-  auto candidates = estimation::CandidateEffectNames();
-  for (const auto& name : estimation::FreeMotionEffectNames()) {
-    if (std::find(candidates.begin(), candidates.end(), name) == candidates.end())
-      candidates.push_back(name);
-  }
-  std::string known;
-  for (const auto& k : candidates) known += (known.empty() ? "" : ", ") + k;
-  for (std::size_t i = 0; i < names.size(); ++i) {
-    const std::string option = "pliant identify: --effect " + names[i];
-    if (!estimation::EffectCatalogue::Global().Contains(names[i]))
-      throw io::InputError(option, 0, 0, "not in the catalogue", "one of: " + known);
-    if (std::find(candidates.begin(), candidates.end(), names[i]) == candidates.end())
-      throw io::InputError(option, 0, 0, "is part of the model identify always fits",
-                           "name an effect beyond it, one of: " + known);
-    if (std::find(names.begin(), names.begin() + long(i), names[i]) != names.begin() + long(i))
-      throw io::InputError(option, 0, 0, "is given twice", "give each effect once: it is fitted once");
-  }
-}
-
-// The parameters with only the effects named by --effect: what the second
-// pass takes out of the efforts (the base's own, a held friction, stays in).
-models::ModelParameters WithOnlyTheNamed(models::ModelParameters parameters,
-                                         const std::vector<std::string>& names) {
-  auto& e = parameters.effects;
-  e.erase(std::remove_if(e.begin(), e.end(),
-                         [&](const models::EffectParameters& effect) {
-                           return std::find(names.begin(), names.end(), effect.name) == names.end();
-                         }),
-          e.end());
-  return parameters;
-}
-
-// Whether the file holds an effect on the measured effort (internal torque).
-bool ReadsTheEffort(const models::ModelParameters& parameters) {
-  const estimation::ExtraEffects effects(parameters.effects);
-  return std::any_of(effects.models().begin(), effects.models().end(), [](const auto& m) {
-    return m->Info().channel == models::Channel::kInternalTorque;
-  });
-}
-
-// The fit, with its progress (elapsed time: Ceres gives no share done).
-estimation::IdentificationResult Fit(const IdentifyOptions& options, const std::string& method,
-                                     const estimation::IdentificationData& data,
-                                     const models::ModelParameters& prior) {
-  io::Progress progress("pliant identify: " + method + " fit");
-  estimation::IdentifyLogsOptions fit;
-  fit.law = LawOf(options.law);
-  fit.bias_harmonics = options.harmonics;
-  fit.held_friction = !options.no_held_friction;
-  return estimation::IdentifyLogs(data, prior, method, fit, options.logs);
-}
-
 void RunIdentify(const IdentifyOptions& options) {
-  CheckEffectNames(options.effects);
+  estimation::CheckIdentifyEffectNames(options.effects);
   io::CheckOutputFile(options.output_path, "-o");
   io::CheckOutputFile(options.figure_path, "--figure");
   const models::ModelParameters prior =
@@ -146,50 +81,21 @@ void RunIdentify(const IdentifyOptions& options) {
   for (const auto& path : options.logs) {
     io::CheckLogPlausibilityAndWarn(path, {options.skip_bad_rows});
   }
-  estimation::IdentificationData data;
-  std::vector<io::Log> logs;
-  estimation::LogKinds kinds;
-  for (const auto& path : options.logs) {
-    const io::Log log = io::ReadLog(path, {options.skip_bad_rows});
-    kinds.Add(log, path);
-    estimation::AppendSamples(log, path, {}, &data);
-    if (!options.effects.empty()) logs.push_back(log);
-  }
-  const std::string method = estimation::ResolveIdentifyMethod(options.method, kinds, options.logs);
-  estimation::IdentificationResult result = Fit(options, method, data, prior);
-  result.parameters.description = "identified by pliant identify (" + result.method + ", " +
-                                   options.law + ") from " + std::to_string(options.logs.size()) +
-                                   " log(s)";
-  const std::string description = result.parameters.description;  // before the effects' note
-  EffectFits effects = FitEffects(options.effects, logs, options.logs, &result);
-  const models::ModelParameters named = effects.any()
-                                            ? WithOnlyTheNamed(result.parameters, options.effects)
-                                            : models::ModelParameters{};
-  if (effects.any() && ReadsTheEffort(named)) {
-    // An internal-torque effect was in the efforts the base fit read: its
-    // bias table took up what the effect puts there at the calibration's
-    // poses, which the effect beside it would then count twice. Once more:
-    // the base on the efforts without the effects, then the effects.
-    estimation::IdentificationData without;
-    for (std::size_t i = 0; i < logs.size(); ++i) {
-      estimation::AppendSamples(estimation::WithoutInternalTorque(logs[i], named),
-                                options.logs[i], {}, &without);
-    }
-    result = Fit(options, method, without, prior);
-    result.parameters.description = description;
-    effects = FitEffects(options.effects, logs, options.logs, &result);
-    data = std::move(without);  // (the report and the figures show what the base read)
-  }
-  // Which logs: a diagnosis of one of them then says that what this fit took
-  // up does not show in its residual (docs/diagnose.md).
-  result.parameters.identified_from = io::SourceLogs(options.logs);
+  estimation::IdentifyLogsOptions fit;
+  fit.method = options.method;
+  fit.law = LawOf(options.law);
+  fit.bias_harmonics = options.harmonics;
+  fit.held_friction = !options.no_held_friction;
+  fit.effects = options.effects;
+  fit.skip_bad_rows = options.skip_bad_rows;
+  const auto [result, data, effects] = estimation::IdentifyLogFiles(options.logs, prior, fit);
   io::WriteParameters(options.output_path, result.parameters);
   std::FILE* out = SummaryStream(options.output_path);
   const auto laws = estimation::CompareLaws(result);
   if (options.json) {
     auto json = estimation::IdentificationJson(result, data, laws);
     json["output"] = options.output_path;
-    AddEffectFitsJson(effects, &json);
+    estimation::AddEffectFitsJson(effects, &json);
     std::fprintf(out, "%s\n", json.dump(2).c_str());
   } else {
     std::fprintf(out, "pliant identify: %s%s",

@@ -5,9 +5,13 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "pliant/estimation/effect_inputs.h"
 #include "pliant/estimation/identification_quasi_static.h"
 #include "pliant/estimation/joint_smoother.h"
+#include "pliant/io/file_checksum.h"
 #include "pliant/io/input_error.h"
+#include "pliant/io/log_reader.h"
+#include "pliant/io/progress.h"
 
 namespace pliant::estimation {
 namespace {
@@ -86,6 +90,7 @@ IdentificationResult IdentifyLogs(const IdentificationData& data,
                                   const models::ModelParameters& prior, const std::string& method,
                                   const IdentifyLogsOptions& options,
                                   const std::vector<std::string>& paths) {
+  io::Progress progress("pliant identify: " + method + " fit");  // (Ceres gives no share done)
   if (method == "quasi_static") {
     QuasiStaticOptions quasi;
     quasi.held_friction = options.held_friction;
@@ -109,6 +114,47 @@ IdentificationResult IdentifyLogs(const IdentificationData& data,
   smoother.law = options.law;
   smoother.bias_harmonics = options.bias_harmonics;
   return RunSmootherOn(data, prior, smoother, paths);
+}
+
+IdentifiedLogs IdentifyLogFiles(const std::vector<std::string>& paths,
+                                const models::ModelParameters& prior,
+                                const IdentifyLogsOptions& options) {
+  CheckIdentifyEffectNames(options.effects);
+  IdentifiedLogs out;
+  std::vector<io::Log> logs;  // (kept only for the effects' fits)
+  LogKinds kinds;
+  for (const auto& path : paths) {
+    const io::Log log = io::ReadLog(path, {options.skip_bad_rows});
+    kinds.Add(log, path);
+    AppendSamples(log, path, {}, &out.data);
+    if (!options.effects.empty()) logs.push_back(log);
+  }
+  const std::string method = ResolveIdentifyMethod(options.method, kinds, paths);
+  const auto fit = [&](const IdentificationData& data) {
+    IdentificationResult result = IdentifyLogs(data, prior, method, options, paths);
+    result.parameters.description = "identified by pliant identify (" + result.method + ", " +
+                                    models::ComplianceFormName(options.law) + ") from " +
+                                    std::to_string(paths.size()) + " log(s)";
+    return result;
+  };
+  out.result = fit(out.data);
+  out.effects = FitEffects(options.effects, logs, paths, &out.result);
+  const models::ModelParameters named = out.effects.any()
+                                            ? WithOnlyTheNamed(out.result.parameters, options.effects)
+                                            : models::ModelParameters{};
+  if (out.effects.any() && ReadsTheEffort(named)) {
+    IdentificationData without;
+    for (std::size_t i = 0; i < logs.size(); ++i) {
+      AppendSamples(WithoutInternalTorque(logs[i], named), paths[i], {}, &without);
+    }
+    out.result = fit(without);
+    out.effects = FitEffects(options.effects, logs, paths, &out.result);
+    out.data = std::move(without);
+  }
+  // Which logs: a diagnosis of one of them then says that what this fit took
+  // up does not show in its residual (docs/diagnose.md).
+  out.result.parameters.identified_from = io::SourceLogs(paths);
+  return out;
 }
 
 std::string JoinedPaths(const std::vector<std::string>& paths) {

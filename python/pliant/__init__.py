@@ -156,7 +156,7 @@ def filter_log(params, log, output=None, smooth=False, skip_bad_rows=False, **op
 
 
 def identify(logs, output=None, method="auto", law="inverse_cubic", prior=None,
-             harmonics=2, held_friction=True, skip_bad_rows=False):
+             harmonics=2, held_friction=True, effects=(), skip_bad_rows=False):
     """``pliant identify``: compliance K(L) (rad/(N·m)), backlash δ (rad) and bias
     torque (N·m) from log files, with the covariance (docs/identification.md).
 
@@ -165,7 +165,8 @@ def identify(logs, output=None, method="auto", law="inverse_cubic", prior=None,
     files do; else 'smoother'), 'smoother', 'quasi_static' (clamp by clamp with the
     held friction; held_friction=False fits the paper's form) or 'paper'. law:
     'inverse_cubic', 'direct_cubic' or 'beam_series'. prior: Parameters (or a
-    path) the priors are centred on; default the paper's. output: also save
+    path) the priors are centred on; default the paper's. effects: catalogue
+    effect names fitted beside the base model with their σ, as ``--effect``. output: also save
     the parameters file there. Returns (Parameters, report), the report being
     what ``pliant identify --json`` prints.
     """
@@ -174,7 +175,8 @@ def identify(logs, output=None, method="auto", law="inverse_cubic", prior=None,
     if prior is not None:
         prior = _parameters(prior)[0]
     parameters, report = _pliant.identify([os.fspath(p) for p in logs], method, law, prior,
-                                          harmonics, held_friction, skip_bad_rows)
+                                          harmonics, held_friction, list(effects),
+                                          skip_bad_rows)
     if output is not None:
         parameters.save(os.fspath(output))
         report["output"] = os.fspath(output)

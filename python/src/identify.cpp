@@ -31,34 +31,27 @@ models::ComplianceForm LawNamed(const std::string& name) {
 
 py::tuple Identify(const std::vector<std::string>& logs, const std::string& method,
                    const std::string& law, const std::optional<Parameters>& prior,
-                   int harmonics, bool held_friction, bool skip_bad_rows) {
+                   int harmonics, bool held_friction, const std::vector<std::string>& effects,
+                   bool skip_bad_rows) {
   if (logs.empty()) {
     throw io::InputError("logs", 0, 0, "no log given", "give at least one log file");
   }
   estimation::IdentifyLogsOptions options;
+  options.method = method;
   options.law = LawNamed(law);
   options.bias_harmonics = harmonics;
   options.held_friction = held_friction;
-  estimation::IdentificationData data;
-  estimation::IdentificationResult result;
+  options.effects = effects;
+  options.skip_bad_rows = skip_bad_rows;
+  estimation::IdentifiedLogs fit;
   {
     py::gil_scoped_release unlocked;
-    estimation::LogKinds kinds;
-    for (const auto& path : logs) {
-      const io::Log log = io::ReadLog(path, {skip_bad_rows});
-      kinds.Add(log, path);
-      estimation::AppendSamples(log, path, {}, &data);
-    }
-    const std::string resolved = estimation::ResolveIdentifyMethod(method, kinds, logs);
-    result = estimation::IdentifyLogs(data, prior ? *prior : estimation::PaperPrior(), resolved,
-                                      options, logs);
+    fit = estimation::IdentifyLogFiles(logs, prior ? *prior : estimation::PaperPrior(), options);
   }
-  result.parameters.description = "identified by pliant identify (" + result.method + ", " +
-                                  law + ") from " + std::to_string(logs.size()) + " log(s)";
-  result.parameters.identified_from = io::SourceLogs(logs);  // as the command records them
-  const auto report =
-      estimation::IdentificationJson(result, data, estimation::CompareLaws(result));
-  return py::make_tuple(result.parameters, ToPython(report));
+  auto report = estimation::IdentificationJson(fit.result, fit.data,
+                                               estimation::CompareLaws(fit.result));
+  estimation::AddEffectFitsJson(fit.effects, &report);
+  return py::make_tuple(fit.result.parameters, ToPython(report));
 }
 
 // The arm's dynamics on the logs' free motion, added to `parameters`
@@ -97,7 +90,7 @@ void BindIdentify(py::module_& m) {
   m.def("identify", &Identify, py::arg("logs"), py::arg("method") = "auto",
         py::arg("law") = "inverse_cubic", py::arg("prior") = py::none(),
         py::arg("harmonics") = 2, py::arg("held_friction") = true,
-        py::arg("skip_bad_rows") = false,
+        py::arg("effects") = std::vector<std::string>{}, py::arg("skip_bad_rows") = false,
         "Identifies compliance K(L) (rad/(N·m)), backlash δ (rad) and bias torque τ0(q) (N·m) "
         "from log files, as `pliant identify` does (docs/identification.md).\n\n"
         "logs: paths of canonical logs (free-tip rows feed the bias, tip_fixed rows the "
@@ -107,7 +100,8 @@ void BindIdentify(py::module_& m) {
         "friction; held_friction=False: the paper's form) or 'paper' (the paper's procedure). "
         "law: 'inverse_cubic', 'direct_cubic' or "
         "'beam_series'. prior: Parameters the priors are centred on (default: the paper's). "
-        "harmonics: Fourier harmonics of the bias torque (smoother). Returns (Parameters, "
+        "harmonics: Fourier harmonics of the bias torque (smoother). effects: catalogue effects "
+        "fitted beside the base with their σ, as --effect (docs/effects.md). Returns (Parameters, "
         "report): the report is the dict `pliant identify --json` prints (each parameter ± σ, "
         "K(L) at three depths, fit RMS, warnings).");
 }

@@ -112,3 +112,18 @@ def test_identify_takes_the_real_arms_one_joint_logs_as_the_command(tmp_path):
     with pytest.raises(pliant.InputError, match="jhu2017_bias_j1.csv, .*jhu2017_clamped_j1.csv "
                                                 "record one joint only"):
         pliant.identify(real, method="smoother")
+
+
+def test_identify_fits_a_named_effect_as_the_command(tmp_path):
+    """effects= is --effect: the same file, to the last digit, and the report's
+    'effects_fit' the command's."""
+    logs = [data("bias_sweep.csv"), data("divot_hidden_effect.csv")]
+    stdout, _ = run_cli("identify", *logs, "--effect", "deflection_coupling", "-o",
+                        tmp_path / "cli.json", "--json")
+    params, report = pliant.identify(logs, effects=["deflection_coupling"],
+                                     output=tmp_path / "mine.json")
+    assert read_bytes(tmp_path / "mine.json") == read_bytes(tmp_path / "cli.json")
+    assert without_timing(report) == without_timing(json.loads(stdout))
+    assert "deflection_coupling" in json.loads((tmp_path / "mine.json").read_text())["effects"]
+    with pytest.raises(pliant.InputError, match="--effect joint_frction: not in the catalogue"):
+        pliant.identify(logs, effects=["joint_frction"])

@@ -9,6 +9,7 @@
 
 #include "pliant/estimation/identification.h"
 #include "pliant/estimation/identification_data.h"
+#include "pliant/estimation/identify_effects.h"
 #include "pliant/io/log.h"
 
 namespace pliant::estimation {
@@ -18,6 +19,8 @@ struct IdentifyLogsOptions {
   models::ComplianceForm law = models::ComplianceForm::kInverseCubic;
   int bias_harmonics = 2;     ///< the joint smoother's Fourier harmonics of the bias torque
   bool held_friction = true;  ///< quasi_static: fit the held friction (false: the paper's form)
+  std::vector<std::string> effects;  ///< catalogue effects fitted beside the base (identify_effects.h)
+  bool skip_bad_rows = false;        ///< drop rows with NaN/Inf/empty required values
 };
 
 /// What `auto` reads of the logs: whether each is a quasi-static log (one
@@ -45,6 +48,23 @@ IdentificationResult IdentifyLogs(const IdentificationData& data,
                                   const models::ModelParameters& prior, const std::string& method,
                                   const IdentifyLogsOptions& options,
                                   const std::vector<std::string>& paths);
+
+/// A base fit of log files with the effects named beside it.
+struct IdentifiedLogs {
+  IdentificationResult result;  ///< its parameters say what fitted them and from which logs
+  IdentificationData data;      ///< what the base fit read (the report's and the figures')
+  EffectFits effects;
+};
+
+/// What `pliant identify LOGS…` does before it writes: reads the logs at
+/// `paths`, fits the base model by the method `auto` or options.method
+/// chooses, then options.effects. Where one of those acts on the effort, the
+/// base fit's bias table took up what the effect puts there at the
+/// calibration's poses: the base is fitted once more on the efforts without
+/// it, then the effects. The parameters record the logs (identified_from).
+IdentifiedLogs IdentifyLogFiles(const std::vector<std::string>& paths,
+                                const models::ModelParameters& prior,
+                                const IdentifyLogsOptions& options);
 
 /// "a.csv, b.csv": the logs as an error message names them.
 std::string JoinedPaths(const std::vector<std::string>& paths);
