@@ -115,31 +115,36 @@ def _through_files(run, log, output, skip_bad_rows):
         return read_log(target, skip_bad_rows), summary
 
 
-def correct_log(params, log, output=None, model="paper", skip_bad_rows=False):
+def correct_log(params, log, output=None, model="paper", tare=None, skip_bad_rows=False):
     """``pliant correct`` on a log: adds q1_corr, q2_corr (rad).
 
     params: Parameters or a parameters file's path. log: a log file's path or
     a Log / mapping of columns. model: 'paper' (equation 2) or 'deadzone'.
     output: also keep the corrected log there (written atomically, the file
-    ``pliant correct`` writes). Returns (Log, summary); the summary has rows,
-    depth_clamped_rows, and the tip error (mm) uncorrected and corrected
-    against the log's q*_true or q*_ref when it has one.
+    ``pliant correct`` writes). tare: ``--tare``, 'auto' or 'T0:T1' — the
+    parameters' bias torque tared on the log's unloaded rows first, as a real
+    arm's bias drifts between days (docs/real-data.md). Returns (Log, summary);
+    the summary has rows, depth_clamped_rows, the tip error (mm) uncorrected
+    and corrected against the log's q*_true or q*_ref when it has one, and
+    'tare' (the command's tare lines, '' untared).
     """
     parameters, name = _parameters(params)
     note = model + " model, parameters " + name
 
     def run(source, target):
-        return _pliant._correct_file(parameters, source, target, model, note, skip_bad_rows)
+        return _pliant._correct_file(parameters, source, target, model, note, tare or "",
+                                     skip_bad_rows)
 
     return _through_files(run, log, output, skip_bad_rows)
 
 
-def filter_log(params, log, output=None, smooth=False, skip_bad_rows=False, **options):
+def filter_log(params, log, output=None, smooth=False, tare=None, skip_bad_rows=False,
+               **options):
     """``pliant filter`` on a log: the EKF (or with smooth=True the RTS smoother).
 
     Adds q1_corr, q2_corr (rad), q1_sd, q2_sd (rad), q12_cov (rad²),
     tip_corr_mm, tip_corr_sd_mm (mm), nis and flags (FLAG_* bits). params,
-    log and output as in correct_log; options as pliant.Filter's. Returns
+    log, output and tare as in correct_log; options as pliant.Filter's. Returns
     (Log, summary): rows, flagged rows, mean_nis_per_dof, the tip error (mm)
     uncorrected, filtered (and smoothed_error) against the reference, notes
     (what the log's header changed) and advice (what the summary prints beside
@@ -150,7 +155,7 @@ def filter_log(params, log, output=None, smooth=False, skip_bad_rows=False, **op
 
     def run(source, target):
         return _pliant._filter_file(parameters, source, target, smooth, options, note,
-                                    skip_bad_rows)
+                                    tare or "", skip_bad_rows)
 
     return _through_files(run, log, output, skip_bad_rows)
 

@@ -32,4 +32,10 @@ using Parameters = models::ModelParameters;
 
 /// {"rows": n, "rms_mm": …, "max_mm": …}: tip error against the log's reference, mm.
 py::dict TipErrorDict(const estimation::TipErrorStatistics& statistics);
+
+/// `--tare SPEC` of pliant correct and pliant filter (estimation/log_tare.h):
+/// `parameters` tared on the log at `input` ("" leaves them), the note
+/// appended to `metadata_note`; returns the summary's lines ("" untared).
+std::string TareForLog(const std::string& input, const std::string& spec, Parameters* parameters,
+                       std::string* metadata_note);
 }  // namespace pliant::python

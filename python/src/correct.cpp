@@ -8,6 +8,7 @@
 #include <pybind11/numpy.h>
 
 #include "bindings.h"
+#include "pliant/estimation/log_tare.h"
 #include "pliant/estimation/effect_inputs.h"
 #include "pliant/estimation/log_correction.h"
 #include "pliant/io/input_error.h"
@@ -84,9 +85,10 @@ py::dict CorrectArrays(const Parameters& parameters, const Array& q1, const Arra
   return out;
 }
 
-py::dict CorrectFile(const Parameters& parameters, const std::string& input,
-                     const std::string& output, const std::string& model,
-                     const std::string& metadata_note, bool skip_bad_rows) {
+py::dict CorrectFile(Parameters parameters, const std::string& input, const std::string& output,
+                     const std::string& model, std::string metadata_note, const std::string& tare,
+                     bool skip_bad_rows) {
+  const std::string tared = TareForLog(input, tare, &parameters, &metadata_note);
   const estimation::ComplianceCorrector corrector(parameters, ModelNamed(model));
   estimation::LogCorrectionSummary s;
   {
@@ -99,10 +101,20 @@ py::dict CorrectFile(const Parameters& parameters, const std::string& input,
   out["reference"] = s.reference;
   out["uncorrected"] = TipErrorDict(s.uncorrected);
   out["corrected"] = TipErrorDict(s.corrected);
+  out["tare"] = tared;
   return out;
 }
 
 }  // namespace
+
+std::string TareForLog(const std::string& input, const std::string& spec, Parameters* parameters,
+                       std::string* metadata_note) {
+  if (spec.empty()) return "";
+  const estimation::LogTare tare = estimation::TareOnLog(input, spec, parameters);
+  const std::string note = tare.Note();
+  if (!note.empty()) *metadata_note += ", " + note;
+  return tare.Words();
+}
 
 py::dict TipErrorDict(const estimation::TipErrorStatistics& statistics) {
   py::dict out;
@@ -125,7 +137,8 @@ void BindCorrect(py::module_& m) {
         "tau2_ext (N·m, tau − tau0(q)), depth_clamped (bool: q3 outside the valid depths, K(L) "
         "taken at the nearest end) — the numbers `pliant correct` writes.");
   m.def("_correct_file", &CorrectFile, py::arg("parameters"), py::arg("input"),
-        py::arg("output"), py::arg("model"), py::arg("metadata_note"), py::arg("skip_bad_rows"),
+        py::arg("output"), py::arg("model"), py::arg("metadata_note"), py::arg("tare"),
+        py::arg("skip_bad_rows"),
         "`pliant correct` on a file; see pliant.correct_log.");
 }
 

@@ -49,10 +49,11 @@ FilterSample SampleFromArray(const Array& a) {
                 n > 7 ? a.at(7) : nan, n > 8 && a.at(8) >= 0.5);
 }
 
-py::dict FilterFile(const Parameters& parameters, const std::string& input,
-                    const std::string& output, bool smooth, const py::dict& options,
-                    const std::string& metadata_note, bool skip_bad_rows) {
+py::dict FilterFile(Parameters parameters, const std::string& input, const std::string& output,
+                    bool smooth, const py::dict& options, std::string metadata_note,
+                    const std::string& tare, bool skip_bad_rows) {
   const auto filter_options = FilterOptionsFrom(options);
+  const std::string tared = TareForLog(input, tare, &parameters, &metadata_note);
   estimation::LogFilterSummary s;
   {
     py::gil_scoped_release unlocked;
@@ -70,6 +71,7 @@ py::dict FilterFile(const Parameters& parameters, const std::string& input,
   out["uncorrected"] = TipErrorDict(s.uncorrected);
   out["filtered"] = TipErrorDict(s.filtered);
   if (s.smoothed) out["smoothed_error"] = TipErrorDict(s.smoothed_error);
+  out["tare"] = tared;
   return out;
 }
 
@@ -158,7 +160,7 @@ void BindFilter(py::module_& m) {
         "The filter options pliant.Filter and pliant.filter_log take, with their defaults "
         "(units in the names; NaN: chosen from the parameters or other options).");
   m.def("_filter_file", &FilterFile, py::arg("parameters"), py::arg("input"), py::arg("output"),
-        py::arg("smooth"), py::arg("options"), py::arg("metadata_note"),
+        py::arg("smooth"), py::arg("options"), py::arg("metadata_note"), py::arg("tare"),
         py::arg("skip_bad_rows"), "`pliant filter` on a file; see pliant.filter_log.");
 }
 

@@ -99,3 +99,21 @@ def test_arrays_with_times_give_the_effects_the_commands_inputs(tmp_path):
     np.testing.assert_array_equal(streamed["q2_corr"], expected["q2_corr"])
     still = pliant.correct(*args, model="deadzone")
     assert np.max(np.abs(still["tau1_ext"] - streamed["tau1_ext"])) > 0.01
+
+
+def test_tare_is_the_commands_on_a_real_arm(tmp_path):
+    """tare='auto' is --tare auto (docs/real-data.md): the real PSM2 bag with another
+    arm's bias table, tared on its steadiest unloaded run; the same file byte for
+    byte from correct_log and filter_log, the summary's tare lines the command's."""
+    params, bag = data("paper.json"), data("real/crtk2022_psm2_free.csv")
+    for command, function in (("correct", pliant.correct_log), ("filter", pliant.filter_log)):
+        stdout, _ = run_cli(command, "--params", params, bag, "--tare", "auto", "-o",
+                            tmp_path / f"{command}_cli.csv")
+        _, summary = function(params, bag, output=tmp_path / f"{command}_mine.csv", tare="auto")
+        assert read_bytes(tmp_path / f"{command}_mine.csv") == read_bytes(
+            tmp_path / f"{command}_cli.csv")
+        assert summary["tare"].startswith("  tare joint 1: ") and summary["tare"] in stdout
+        _, untared = function(params, bag)
+        assert untared["tare"] == ""
+    with pytest.raises(pliant.InputError, match="tare"):
+        pliant.correct_log(params, bag, tare="sometimes")
