@@ -209,13 +209,16 @@ def identify_arm_dynamics(logs, params, output=None, skip_bad_rows=False):
 
 
 def diagnose(params, log, add=(), candidates=(), reference="auto", max_lag=30, folds=5,
-             report_dir=None):
+             report_dir=None, write_params=None):
     """``pliant diagnose --json``: the effect the model lacks on a log file.
 
     params: Parameters or a path. Returns the summary dict: rms_before,
     rms_after (held-out tip RMS, mm), missing_effect (a name or None), effects
-    and channels best first; with report_dir, also the HTML report there.
+    and channels best first; with report_dir, also the HTML report there; with
+    write_params (``--write-params``), also the parameters with the ``add``
+    effects fitted on this log, which correct_log and filter_log apply.
     """
     parameters = _parameters(params)[0]
+    path = lambda p: None if p is None else os.fspath(p)
     return _pliant.diagnose(parameters, os.fspath(log), list(add), list(candidates), reference,
-                            max_lag, folds, None if report_dir is None else os.fspath(report_dir))
+                            max_lag, folds, path(report_dir), path(write_params))
