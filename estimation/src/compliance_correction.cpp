@@ -137,8 +137,11 @@ JointCorrection ComplianceCorrector::Correct(const models::JointState<double>& i
   }
   out.deflection_rad += extra_.Deflection(state);
   out.corrected_rad = q.head<2>() - out.deflection_rad;
-  for (const auto& joint : parameters_.joints) {
-    out.depth_clamped |= q[2] < joint.depth_min_m || q[2] > joint.depth_max_m;
+  // A joint the row does not read (no encoder angle: a log of the other
+  // joint) has no depth range to leave.
+  for (int j = 0; j < 2; ++j) {
+    const auto& joint = parameters_.joints[j];
+    out.depth_clamped |= std::isfinite(q[j]) && (q[2] < joint.depth_min_m || q[2] > joint.depth_max_m);
   }
   return out;
 }

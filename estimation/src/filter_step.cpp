@@ -20,8 +20,10 @@ void ComplianceFilter::Impl::StepState(const FilterSample& sample) {
   } else {
     tally.flags |= kFlagMissing;
   }
-  for (const auto& jp : parameters.joints) {
-    if (depth < jp.depth_min_m || depth > jp.depth_max_m) tally.flags |= kFlagDepthOutOfRange;
+  for (int j = 0; j < 2; ++j) {  // (a joint the log does not record has no range to leave)
+    const auto& jp = parameters.joints[j];
+    if (options.joint_recorded[j] && (depth < jp.depth_min_m || depth > jp.depth_max_m))
+      tally.flags |= kFlagDepthOutOfRange;
   }
   ExtraInternalTorque(sample);  // (and the row's inputs the effects see)
   if (!initialised) {

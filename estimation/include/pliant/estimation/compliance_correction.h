@@ -46,7 +46,7 @@ struct JointCorrection {
   Eigen::Vector2d corrected_rad;       ///< q̂1, q̂2
   Eigen::Vector2d external_torque_nm;  ///< tau_ext = tau_meas − tau0(q)
   Eigen::Vector2d deflection_rad;      ///< q − q̂
-  bool depth_clamped = false;          ///< L was outside a joint's valid range
+  bool depth_clamped = false;          ///< L was outside the valid range of a joint whose angle the row has
 };
 
 class ComplianceCorrector {
