@@ -106,6 +106,11 @@ void RunParams(const ParamsOptions& options) {
   } else {
     std::printf("%s", estimation::DepthTable(at).c_str());
     if (!parameters.covariance) std::printf("  (the file has no covariance: σ shown as 0)\n");
+    for (int j = 0; parameters.covariance && j < 2; ++j) {
+      if (!at.joints[j].in_covariance)
+        std::printf("  (joint %d's law is not in the file's covariance: it was not identified, "
+                    "and its σ shown as 0 is not known)\n", j + 1);
+    }
   }
 }
 

@@ -43,6 +43,7 @@ ParametersAtDepth QueryParametersAtDepth(const models::ModelParameters& paramete
       for (int b = 0; b < 4; ++b) {
         const long ia = IndexOf(c, names[a]), ib = IndexOf(c, names[b]);
         if (ia >= 0 && ib >= 0) variance += k.v[a] * c.matrix(ia, ib) * k.v[b];
+        at.in_covariance = at.in_covariance || (ia >= 0 && ib >= 0);
       }
     }
     at.compliance_sd = std::sqrt(std::max(0.0, variance));

@@ -64,5 +64,21 @@ TEST(IdentifyMethod, PosesWithoutClampsAreBadInputNotAFailure) {
   EXPECT_FALSE(fs::exists(dir / "p.json"));
 }
 
+// Joint 1's logs alone: joint 2 keeps the prior's law, which the file's
+// covariance does not hold; `params` says so instead of a bare "± 0".
+TEST(IdentifyMethod, AJointNoLogRecordsIsSaidToBeUnidentified) {
+  const auto dir = FreshDirectory("identify_method_one_joint");
+  ASSERT_EQ(RunIn(dir, kCli + " identify " + kReal + "jhu2017_bias_j1.csv " + kReal +
+                           "jhu2017_clamped_j1.csv -o j1.json")
+                .exit_code,
+            0);
+  const auto at = RunIn(dir, kCli + " params j1.json --depth 0.162");
+  ASSERT_EQ(at.exit_code, 0) << at.err;
+  EXPECT_NE(at.out.find("(joint 2's law is not in the file's covariance: it was not identified"),
+            std::string::npos)
+      << at.out;
+  EXPECT_EQ(at.out.find("joint 1's law is not"), std::string::npos) << at.out;
+}
+
 }  // namespace
 }  // namespace pliant::testing

@@ -17,6 +17,10 @@ struct JointAtDepth {
   double backlash_rad = 0.0;
   double backlash_sd = 0.0;
   bool depth_clamped = false;  ///< L was outside the valid range: K is the nearest end's
+  /// The file's covariance holds this joint's law: false for a joint no log
+  /// of the identification recorded (its K kept the prior's value, its σ
+  /// shown as 0 is not known).
+  bool in_covariance = false;
 };
 
 struct ParametersAtDepth {
