@@ -173,6 +173,8 @@ nlohmann::ordered_json DepthJson(const ParametersAtDepth& at) {
     out["inverse_K" + n + "_sd"] = at.joints[j].inverse_compliance_sd;
   }
   out["depth_clamped"] = at.joints[0].depth_clamped || at.joints[1].depth_clamped;
+  // A joint whose law the covariance lacks was not identified: its "_sd" of 0 is not known.
+  out["in_covariance"] = {at.joints[0].in_covariance, at.joints[1].in_covariance};
   return out;
 }
 

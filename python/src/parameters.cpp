@@ -40,7 +40,9 @@ void BindParameters(py::module_& m) {
            "K1, K2 (rad/(N·m)), δ1, δ2 (rad) and 1/K1, 1/K2 (N·m/rad), each with its σ "
            "(key + '_sd'), at insertion depth depth_m (m, in (0, 0.3]): the dict "
            "`pliant params FILE --depth L --json` prints. depth_clamped is True when L is "
-           "outside a joint's valid range (K is then the nearest end's). Raises InputError "
+           "outside a joint's valid range (K is then the nearest end's); in_covariance[j] is False "
+           "for a joint the file's covariance lacks (not identified: its _sd of 0 is not known). "
+           "Raises InputError "
            "for a depth outside (0, 0.3] m.")
       .def(
           "to_dict", [](const Parameters& p) { return ToPython(io::ParametersToJson(p)); },

@@ -78,6 +78,9 @@ TEST(IdentifyMethod, AJointNoLogRecordsIsSaidToBeUnidentified) {
             std::string::npos)
       << at.out;
   EXPECT_EQ(at.out.find("joint 1's law is not"), std::string::npos) << at.out;
+  const auto json = RunIn(dir, kCli + " params j1.json --depth 0.162 --json");
+  ASSERT_EQ(json.exit_code, 0) << json.err;
+  EXPECT_EQ(nlohmann::json::parse(json.out).at("in_covariance"), nlohmann::json({true, false}));
 }
 
 }  // namespace
