@@ -37,10 +37,11 @@ struct IdentifyOptions {
   std::vector<std::string> effects;  ///< --effect: catalogue effects fitted after the base
 };
 
+// (CLI11 has checked the name: IsMember.)
 models::ComplianceForm LawOf(const std::string& name) {
-  if (name == "direct_cubic") return models::ComplianceForm::kDirectCubic;
-  if (name == "beam_series") return models::ComplianceForm::kBeamSeries;
-  return models::ComplianceForm::kInverseCubic;
+  models::ComplianceForm form = models::ComplianceForm::kInverseCubic;
+  models::ComplianceFormNamed(name, &form);
+  return form;
 }
 
 // The paper's Fig. 6: per-depth 1/K, the fitted law and its 95 % band.

@@ -196,4 +196,15 @@ const char* ComplianceFormName(ComplianceForm form) {
   return "?";
 }
 
+bool ComplianceFormNamed(const std::string& name, ComplianceForm* form) {
+  for (auto f : {ComplianceForm::kInverseCubic, ComplianceForm::kDirectCubic,
+                 ComplianceForm::kBeamSeries}) {
+    if (name == ComplianceFormName(f)) {
+      *form = f;
+      return true;
+    }
+  }
+  return false;
+}
+
 }  // namespace pliant::models

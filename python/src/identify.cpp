@@ -21,10 +21,8 @@ namespace pliant::python {
 namespace {
 
 models::ComplianceForm LawNamed(const std::string& name) {
-  for (auto form : {models::ComplianceForm::kInverseCubic, models::ComplianceForm::kDirectCubic,
-                    models::ComplianceForm::kBeamSeries}) {
-    if (name == models::ComplianceFormName(form)) return form;
-  }
+  models::ComplianceForm form;
+  if (models::ComplianceFormNamed(name, &form)) return form;
   throw io::InputError("law", 0, 0, "unknown compliance law '" + name + "'",
                        "use 'inverse_cubic', 'direct_cubic' or 'beam_series'");
 }

@@ -115,5 +115,19 @@ TEST(Parameters, FourierBiasIsEvaluatedWithItsDepthTerms) {
             "joint2: bias_torque coefficients must be a0, a1, b1, … (an odd number, at least one)");
 }
 
+// The names the parameters file, identify --model and pliant.identify's law= share.
+TEST(Parameters, EachFormIsNamedAndReadBack) {
+  for (auto form : {ComplianceForm::kInverseCubic, ComplianceForm::kDirectCubic,
+                    ComplianceForm::kBeamSeries}) {
+    ComplianceForm read = form == ComplianceForm::kBeamSeries ? ComplianceForm::kInverseCubic
+                                                              : ComplianceForm::kBeamSeries;
+    ASSERT_TRUE(ComplianceFormNamed(ComplianceFormName(form), &read)) << ComplianceFormName(form);
+    EXPECT_EQ(read, form);
+  }
+  ComplianceForm untouched = ComplianceForm::kDirectCubic;
+  EXPECT_FALSE(ComplianceFormNamed("cubic", &untouched));
+  EXPECT_EQ(untouched, ComplianceForm::kDirectCubic);
+}
+
 }  // namespace
 }  // namespace pliant::models

@@ -172,4 +172,7 @@ void ScaleCompliance(ComplianceLaw& law, double scale);
 /// "inverse_cubic", "direct_cubic", "beam_series" (the parameters file's words).
 const char* ComplianceFormName(ComplianceForm form);
 
+/// The form a name of ComplianceFormName's stands for; false for any other name.
+bool ComplianceFormNamed(const std::string& name, ComplianceForm* form);
+
 }  // namespace pliant::models
