@@ -143,6 +143,8 @@ IdentifiedLogs IdentifyLogFiles(const std::vector<std::string>& paths,
                                             ? WithOnlyTheNamed(out.result.parameters, options.effects)
                                             : models::ModelParameters{};
   if (out.effects.any() && ReadsTheEffort(named)) {
+    // The base's bias table took up what the effect puts in the effort at the
+    // calibration's poses, which the effect beside it would count twice.
     IdentificationData without;
     for (std::size_t i = 0; i < logs.size(); ++i) {
       AppendSamples(WithoutInternalTorque(logs[i], named), paths[i], {}, &without);
