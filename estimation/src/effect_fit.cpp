@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "diagnosis_internal.h"
+#include "pliant/estimation/identify_logs.h"
 #include "pliant/estimation/jacobian_check.h"
 #include "pliant/io/input_error.h"
 
@@ -119,12 +120,6 @@ bool HasHeldTip(const io::Log& log) {
   return false;
 }
 
-std::string Joined(const std::vector<std::string>& items) {
-  std::string out;
-  for (const auto& item : items) out += (out.empty() ? "" : ", ") + item;
-  return out;
-}
-
 // An effect the held rows did not inform: every parameter's σ is still above
 // its prior's/√2 (the data carried less information than the prior). The
 // parameters file then holds the prior, and the filter takes its σ as doubt;
@@ -136,7 +131,7 @@ std::string UninformedNote(const EffectFinding& f, const Term& term) {
   }
   return f.name + ": the held rows here do not inform it (every parameter's σ is above its "
                   "prior's/√2), so it stays near its prior and the filter takes that σ as doubt; "
-                  "fit it on a log where what it reads (" + Joined(f.channels) +
+                  "fit it on a log where what it reads (" + JoinedPaths(f.channels) +
          ") varies under load, e.g. `pliant diagnose --params FILE LOG --add " + f.name +
          " --write-params OUT.json`";
 }
@@ -178,7 +173,7 @@ LogEffectFit FitEffectsOnLogs(const std::vector<NamedLog>& logs,
     for (const auto& note : one.notes) out.notes.push_back(named.path + ": " + note);
   }
   if (out.logs.empty()) {
-    throw io::InputError(diagnosis::Joined(all_paths), 0, 0,
+    throw io::InputError(JoinedPaths(all_paths), 0, 0,
                          "no log holds the tip (tip_fixed = 1), and an effect is fitted where the "
                          "tip's place is known",
                          "add a clamped-beam or divot log, or identify without --effect");

@@ -30,8 +30,7 @@ void CheckIdentifyEffectNames(const std::vector<std::string>& names) {
     if (std::find(candidates.begin(), candidates.end(), name) == candidates.end())
       candidates.push_back(name);
   }
-  std::string known;
-  for (const auto& k : candidates) known += (known.empty() ? "" : ", ") + k;
+  const std::string known = JoinedPaths(candidates);
   for (std::size_t i = 0; i < names.size(); ++i) {
     const std::string option = "pliant identify: --effect " + names[i];
     if (!EffectCatalogue::Global().Contains(names[i]))
@@ -63,8 +62,7 @@ bool ReadsTheEffort(const models::ModelParameters& parameters) {
 }
 
 EffectFits FitEffects(const std::vector<std::string>& names, const std::vector<io::Log>& logs,
-                      const std::vector<std::string>& paths,
-                      IdentificationResult* result) {
+                      const std::vector<std::string>& paths, IdentificationResult* result) {
   EffectFits fits;
   if (names.empty()) return fits;
   io::Progress progress("pliant identify: fitting " + JoinedPaths(names));
@@ -95,7 +93,7 @@ EffectFits FitEffects(const std::vector<std::string>& names, const std::vector<i
   if (!on_held.empty()) {
     fits.held = FitEffectsOnLogs(named, result->parameters, on_held, {});
     result->parameters = WithFittedEffects(result->parameters, fits.held->fitted,
-                                                       "pliant identify on " + JoinedPaths(fits.held->logs));
+                                           "pliant identify on " + JoinedPaths(fits.held->logs));
   }
   return fits;
 }

@@ -8,11 +8,9 @@
 #include <pybind11/stl.h>
 
 #include "bindings.h"
-#include "pliant/estimation/effect_fit.h"
 #include "pliant/estimation/free_motion_fit.h"
 #include "pliant/estimation/identification_report.h"
 #include "pliant/estimation/identify_logs.h"
-#include "pliant/estimation/joint_smoother.h"
 #include "pliant/io/file_checksum.h"
 #include "pliant/io/input_error.h"
 #include "pliant/io/log_reader.h"
@@ -66,10 +64,9 @@ py::tuple IdentifyArmDynamics(const std::vector<std::string>& logs, const Parame
     fit = estimation::FitEffectsOnFreeMotion(named, parameters,
                                              estimation::FreeMotionEffectNames());
   }
-  std::string paths;
-  for (const auto& path : fit.logs) paths += (paths.empty() ? "" : ", ") + path;
   auto with = estimation::WithFittedEffects(
-      parameters, fit.fitted, "pliant.identify_arm_dynamics on the free motion of " + paths);
+      parameters, fit.fitted,
+      "pliant.identify_arm_dynamics on the free motion of " + estimation::JoinedPaths(fit.logs));
   io::AddSourceLogs(logs, &with);
   return py::make_tuple(with, ToPython(estimation::FreeMotionFitJson(fit)));
 }

@@ -40,28 +40,28 @@ TEST(IdentifyMethod, AutoTakesOneJointPosesBesideABagOfBothJoints) {
   EXPECT_GT(sd, 0.0);
 }
 
-TEST(IdentifyMethod, TheSmootherOnALogOfOneJointIsBadInputNamingIt) {
-  const auto dir = FreshDirectory("identify_method_smoother");
-  const auto r = RunIn(dir, kCli + " identify --method smoother " + kReal +
-                                "jhu2017_bias_j1.csv " + kReal +
-                                "crtk2022_psm2_free.csv -o p.json");
+// `pliant identify ARGS -o p.json` in a fresh directory: bad input (exit 2)
+// whose message holds `says`, and no file written.
+void ExpectBadInputWritingNothing(const std::string& name, const std::string& args,
+                                  const std::string& says) {
+  const auto dir = FreshDirectory(name);
+  const auto r = RunIn(dir, kCli + " identify " + args + " -o p.json");
   EXPECT_EQ(r.exit_code, 2) << r.err;
-  EXPECT_NE(r.err.find("jhu2017_bias_j1.csv records one joint only — use the method auto or "
-                       "quasi_static"),
-            std::string::npos)
-      << r.err;
+  EXPECT_NE(r.err.find(says), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir / "p.json"));
 }
 
+TEST(IdentifyMethod, TheSmootherOnALogOfOneJointIsBadInputNamingIt) {
+  ExpectBadInputWritingNothing(
+      "identify_method_smoother",
+      "--method smoother " + kReal + "jhu2017_bias_j1.csv " + kReal + "crtk2022_psm2_free.csv",
+      "jhu2017_bias_j1.csv records one joint only — use the method auto or quasi_static");
+}
+
 TEST(IdentifyMethod, PosesWithoutClampsAreBadInputNotAFailure) {
-  const auto dir = FreshDirectory("identify_method_no_clamps");
-  const auto r = RunIn(dir, kCli + " identify " + kReal + "jhu2017_bias_j1.csv -o p.json");
-  EXPECT_EQ(r.exit_code, 2) << r.err;
-  EXPECT_NE(r.err.find("jhu2017_bias_j1.csv: no joint has clamped (tip_fixed) rows at 5 or more "
-                       "depths — add a clamped-beam log"),
-            std::string::npos)
-      << r.err;
-  EXPECT_FALSE(fs::exists(dir / "p.json"));
+  ExpectBadInputWritingNothing("identify_method_no_clamps", kReal + "jhu2017_bias_j1.csv",
+                               "jhu2017_bias_j1.csv: no joint has clamped (tip_fixed) rows at 5 "
+                               "or more depths — add a clamped-beam log");
 }
 
 // Joint 1's logs alone: joint 2 keeps the prior's law, which the file's

@@ -66,7 +66,7 @@ IdentifiedLogs IdentifyLogFiles(const std::vector<std::string>& paths,
                                 const models::ModelParameters& prior,
                                 const IdentifyLogsOptions& options);
 
-/// "a.csv, b.csv": the logs as an error message names them.
+/// "a.csv, b.csv": logs (or any names) as an error message lists them.
 std::string JoinedPaths(const std::vector<std::string>& paths);
 
 }  // namespace pliant::estimation
