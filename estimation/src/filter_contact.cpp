@@ -152,9 +152,10 @@ double HeldPairLogLikelihood(double residual_change, double h, double variance,
 //   onset   (free → contact):    r − r_prev is a new load from the slab;
 //   release (contact → free):    r is the table's error alone, N(0, free).
 // What changes besides (the held friction) the model takes out under all.
-// Each sees two rows' effort noise; the held one also the doubt of s and the
-// clearance, which the travel may cross instead of bending the shaft
-// (HeldPairLogLikelihood).
+// Each sees the two poses' effort noise (noise_rows·σ_e²: 1/n of a window
+// mean of n rows, white as the Kalman update takes it); the held one also
+// the doubt of s and the clearance, which the travel may cross instead of
+// bending the shaft (HeldPairLogLikelihood).
 // Only the onset and the release score the residual's size: a contact that
 // goes on is judged by whether its load follows the encoder, so a clamp's
 // load passing through zero stays a contact.
@@ -162,14 +163,14 @@ PoseTransitions QuasiStaticTransitions(const FilterOptions& o, double residual,
                                        double residual_change, double encoder_change,
                                        double scale_compliance, double scale_sd,
                                        double clearance_rad, double internal_torque_change,
-                                       double free_variance) {
+                                       double free_variance, double noise_rows) {
   PoseTransitions t;
   if (!(scale_compliance > 0.0) || !std::isfinite(residual_change) ||
       !std::isfinite(encoder_change) || !std::isfinite(residual)) {
     return t;
   }
   const double h = encoder_change / scale_compliance;
-  const double noise = 2.0 * o.effort_noise_nm * o.effort_noise_nm +
+  const double noise = noise_rows * o.effort_noise_nm * o.effort_noise_nm +
                        internal_torque_change * internal_torque_change;
   const double model = scale_sd * scale_sd + o.deflection_model_error * o.deflection_model_error;
   const double sd_c = o.contact_load_sd_nm;
@@ -203,13 +204,17 @@ bool PairWindow::Add(const LastPose& row, double time_s, double min_travel_rad,
   ++rows;
   const double elapsed = time_s - start_s;
   if (elapsed < kPairWindowS) return false;
-  if (std::abs(row.encoder_rad - first_encoder_rad) < min_travel_rad && elapsed < kMaxPairWindowS) {
+  const double rows_share =
+      previous.valid ? std::sqrt(0.5 * (1.0 / rows + 1.0 / previous.rows)) : 1.0;
+  if (std::abs(row.encoder_rad - first_encoder_rad) < min_travel_rad * rows_share &&
+      elapsed < kMaxPairWindowS) {
     return false;
   }
   closed_duration_s = elapsed;
   LastPose mean = sum;
   mean.encoder_rad /= rows, mean.residual_nm /= rows, mean.internal_torque_nm /= rows;
   mean.arm_regressor /= rows;
+  mean.rows = rows;
   rows = 0;
   const bool pair =
       previous.valid && std::abs(mean.depth_m - previous.depth_m) <= kMaxHeldDepthChange;

@@ -115,7 +115,8 @@ void ComplianceFilter::Impl::LearnHold() {
 }
 
 // The encoder's travel over which a held shaft's bend shows above a pose
-// pair's effort noise: four of its standard deviations, √2·σ_e, as a bend.
+// pair's effort noise: four of its standard deviations, √2·σ_e, as a bend
+// (single rows'; PairWindow::Add scales it to its windows' means).
 double ComplianceFilter::Impl::PairTravel(int j) {
   constexpr double kNoiseMultiple = 4.0;
   return kNoiseMultiple * std::sqrt(2.0) * options.effort_noise_nm *
@@ -150,7 +151,8 @@ filter_internal::PoseTransitions ComplianceFilter::Impl::PoseChangeEvidence(
     evidence = QuasiStaticTransitions(
         options, pose.residual_nm, pose.residual_nm - last.residual_nm,
         pose.encoder_rad - last.encoder_rad, s.mean[kScale] * ComplianceAtDepth(j),
-        std::sqrt(s.covariance(kScale, kScale)), delta[j], internal_change, free_variance);
+        std::sqrt(s.covariance(kScale, kScale)), delta[j], internal_change, free_variance,
+        1.0 / pose.rows + 1.0 / last.rows);
   }
   if (options.quasi_static || pair) last = pose;
   return evidence;

@@ -89,7 +89,7 @@ PoseTransitions QuasiStaticTransitions(const FilterOptions& o, double residual,
                                        double residual_change, double encoder_change,
                                        double scale_compliance, double scale_sd,
                                        double clearance_rad, double internal_torque_change,
-                                       double free_variance);
+                                       double free_variance, double noise_rows = 2.0);
 // P(contact) after a pose pair, from the last pose's posterior `probability`
 // and the four moves' log-likelihoods summed over the joints.
 double ContactAfterPosePair(const FilterOptions& o, const ContactRates& rates, double probability,
@@ -110,16 +110,16 @@ struct LastPose {
   double depth_m = 0.0;
   double internal_torque_nm = 0.0;  // the parameters' further effects' (held friction)
   InternalTorque::Vector4 arm_regressor = InternalTorque::Vector4::Zero();
+  double rows = 1.0;  // a window's, whose mean it is
 };
 // A continuous log's rows in windows that do not overlap (each row's noise
 // counted once): the means of two consecutive windows are a pose pair. A
-// window lasts kPairWindowS at least, and until the encoder has moved by
-// `min_travel_rad` (a bend that would show above the effort's noise) or
-// kMaxPairWindowS has passed: a slow push's bend shows over a longer span.
+// window lasts kPairWindowS at least, and until the encoder has moved by a
+// bend that would show above the means' effort noise (`min_travel_rad` is
+// single rows', σ_e²/n of a mean of n) or kMaxPairWindowS has passed.
 // Means, because a row's acceleration (and so its inertial doubt) flickers
-// with the encoder's counts while a window's mean is the change of its speed;
-// the effort's noise of a mean is taken as one row's, which no correlation
-// between rows can exceed.
+// with the encoder's counts while a window's mean is the change of its speed
+// (docs/decisions/contact-pair-windows.md).
 constexpr double kPairWindowS = 0.05, kMaxPairWindowS = 1.0;
 struct PairWindow {
   int rows = 0;

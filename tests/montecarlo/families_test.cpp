@@ -60,8 +60,9 @@ TEST(FamilyStudy, TheFilterIsHonestOnInstrumentsUnlikeTheDefaultsAt1500Hz) {
 // its free motion (study key arm_calibration) are the learned arm torque's
 // prior: on the first 100 trials the filter's median tip error against
 // equation (2)'s and its held coverage, with and without them (about 14 s).
-// Measured: 1.050 and 86.3 % without, 0.802 and 91.6 % with. Not yet honest
-// (NEES 2.78 over the whole study: docs/validation.md "still short").
+// Measured: 0.837 and 90.5 % without (below equation (2), as issue 26 asks,
+// but not yet honest: docs/validation.md "still short"), 0.637 and 94.4 %
+// with.
 struct OnlineFigures {
   double filter_over_equation2 = 0.0, coverage = 0.0;
 };
@@ -83,7 +84,7 @@ OnlineFigures RunOnline(const Study& study, int trials) {
   return f;
 }
 
-TEST(FamilyStudy, OnlineTheArmsIdentifiedDynamicsBringTheFilterBelowEquation2) {
+TEST(FamilyStudy, OnlineTheFilterIsBelowEquation2AndTheArmsDynamicsMakeItHonest) {
   const Study arm = ReadStudy(PLIANT_SOURCE_DIR "/experiments/studies/families_1500hz_online_arm.json");
   // Every effect the catalogue fits from free motion: friction, the inertia
   // (the plant's 0.08 kg·m²) and its coupling (the plant has none).
@@ -100,9 +101,10 @@ TEST(FamilyStudy, OnlineTheArmsIdentifiedDynamicsBringTheFilterBelowEquation2) {
   EXPECT_LT(std::abs(coupling.values[0]), 3.0 * coupling.sd[0]) << coupling.values[0];
   const Study without = ReadStudy(PLIANT_SOURCE_DIR "/experiments/studies/families_1500hz_online.json");
   const OnlineFigures before = RunOnline(without, 100), after = RunOnline(arm, 100);
-  EXPECT_GT(before.filter_over_equation2, 1.0);
-  EXPECT_LT(after.filter_over_equation2, 0.85);
-  EXPECT_GT(after.coverage, before.coverage + 0.03);
+  EXPECT_LT(before.filter_over_equation2, 0.95);
+  EXPECT_LT(after.filter_over_equation2, before.filter_over_equation2 - 0.1);
+  EXPECT_GT(after.coverage, before.coverage + 0.02);
+  EXPECT_GT(after.coverage, 0.93);
 }
 
 }  // namespace
