@@ -204,10 +204,7 @@ bool PairWindow::Add(const LastPose& row, double time_s, double min_travel_rad,
   ++rows;
   const double elapsed = time_s - start_s;
   if (elapsed < kPairWindowS) return false;
-  const double rows_share =
-      previous.valid ? std::sqrt(0.5 * (1.0 / rows + 1.0 / previous.rows)) : 1.0;
-  if (std::abs(row.encoder_rad - first_encoder_rad) < min_travel_rad * rows_share &&
-      elapsed < kMaxPairWindowS) {
+  if (std::abs(row.encoder_rad - first_encoder_rad) < min_travel_rad && elapsed < kMaxPairWindowS) {
     return false;
   }
   closed_duration_s = elapsed;

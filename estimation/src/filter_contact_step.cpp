@@ -116,7 +116,7 @@ void ComplianceFilter::Impl::LearnHold() {
 
 // The encoder's travel over which a held shaft's bend shows above a pose
 // pair's effort noise: four of its standard deviations, √2·σ_e, as a bend
-// (single rows'; PairWindow::Add scales it to its windows' means).
+// (single rows', though a pair of means sees σ_e²/n: PairWindow).
 double ComplianceFilter::Impl::PairTravel(int j) {
   constexpr double kNoiseMultiple = 4.0;
   return kNoiseMultiple * std::sqrt(2.0) * options.effort_noise_nm *

@@ -115,11 +115,11 @@ struct LastPose {
 // A continuous log's rows in windows that do not overlap (each row's noise
 // counted once): the means of two consecutive windows are a pose pair. A
 // window lasts kPairWindowS at least, and until the encoder has moved by a
-// bend that would show above the means' effort noise (`min_travel_rad` is
-// single rows', σ_e²/n of a mean of n) or kMaxPairWindowS has passed.
-// Means, because a row's acceleration (and so its inertial doubt) flickers
-// with the encoder's counts while a window's mean is the change of its speed
-// (docs/decisions/contact-pair-windows.md).
+// bend that would show above single rows' effort noise (`min_travel_rad`:
+// the arm's own torque changes with its motion, which a mean's σ_e²/n does
+// not cover) or kMaxPairWindowS has passed. Means, because a row's θ̈ (and
+// so its inertial doubt) flickers with the encoder's counts while a window's
+// mean is the change of its speed (docs/decisions/contact-pair-windows.md).
 constexpr double kPairWindowS = 0.05, kMaxPairWindowS = 1.0;
 struct PairWindow {
   int rows = 0;

@@ -130,12 +130,12 @@ RestThenPush LightPushAfterARest(bool free_level, double table_error_nm, unsigne
   return out;
 }
 
-// Measured (seeds 1-3, table error −0.06 / 0 / +0.06 N·m): the push is
-// believed 0.49 s in with the level or without (the pair windows see the load
-// follow the bend); with the level joint 2 then holds within 0.41-0.49 /
-// 0.51-0.55 / 0.62-1.31 mrad RMS, without it 5.7-8.0 / 0.83-0.94 / 1.80-1.84
-// (the table's error read as load). Equation (2), which reads the table as
-// exact, 2.6-2.9 / 0.33-0.35 / 2.2.
+// Measured (seeds 1-3, table error −0.06 / 0 / +0.06 N·m): with the level
+// the push is believed 0.54-0.55 s in (at 0.3 N·m) and joint 2 holds within
+// 2.8-3.3 mrad RMS; without it, at −0.06 and 0 never (17 mrad: the tip
+// follows the encoder), at +0.06 after 0.92-0.94 s (9.1-9.2 mrad). Equation
+// (2), which reads the table as exact, 2.2-2.9 with the error and 0.35
+// without: what is left is the load's climb once believed.
 TEST(FreeLevel, ALightPushAfterARestIsToldFromTheTablesErrorByItsChange) {
   for (double table_error : {-0.06, 0.0, 0.06}) {
     for (unsigned seed = 1; seed <= 3; ++seed) {
@@ -144,9 +144,9 @@ TEST(FreeLevel, ALightPushAfterARestIsToldFromTheTablesErrorByItsChange) {
       const std::string what =
           "table error " + std::to_string(table_error) + " N·m, seed " + std::to_string(seed);
       EXPECT_LT(with.recognised_s, 0.6) << what;
-      EXPECT_LE(with.recognised_s, without.recognised_s) << what;
-      EXPECT_LT(with.held_rms_rad, 2e-3) << what;
-      EXPECT_LT(with.held_rms_rad, 0.85 * without.held_rms_rad) << what;
+      EXPECT_LT(with.recognised_s, without.recognised_s) << what;
+      EXPECT_LT(with.held_rms_rad, 4e-3) << what;
+      EXPECT_LT(with.held_rms_rad, 0.5 * without.held_rms_rad) << what;
     }
   }
 }

