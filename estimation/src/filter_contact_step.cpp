@@ -116,11 +116,35 @@ void ComplianceFilter::Impl::LearnHold() {
 
 // The encoder's travel over which a held shaft's bend shows above a pose
 // pair's effort noise: four of its standard deviations, √2·σ_e, as a bend
-// (single rows', though a pair of means sees σ_e²/n: PairWindow).
+// (single rows': the most a window waits for, WindowTravel).
 double ComplianceFilter::Impl::PairTravel(int j) {
   constexpr double kNoiseMultiple = 4.0;
   return kNoiseMultiple * std::sqrt(2.0) * options.effort_noise_nm *
          std::abs(joint[j].mean[kScale] * ComplianceAtDepth(j));
+}
+
+// The travel a continuous log's pair window waits for: a bend of four
+// standard deviations of the pair it would close now — the means' noise and
+// the learned arm torque's doubt over the change of motion — and never more
+// than single rows' (PairTravel): within a steady push the windows are short,
+// across a change of motion (a push's start, a stepping motor's holds) long.
+double ComplianceFilter::Impl::WindowTravel(int j, const LastPose& now) {
+  const double single = PairTravel(j);
+  const PairWindow& w = pair_window[j];
+  if (!w.previous.valid || !now.valid) return single;
+  const double rows = w.rows + 1.0;
+  const LastPose& p = w.previous;
+  const auto mean = [&](double sum, double row) { return w.rows > 0 ? (sum + row) / rows : row; };
+  const InternalTorque::Vector4 regressor =
+      w.rows > 0 ? InternalTorque::Vector4((w.sum.arm_regressor + now.arm_regressor) / rows)
+                 : now.arm_regressor;
+  const InternalTorque::Vector4 change = regressor - p.arm_regressor;
+  const double internal = mean(w.sum.internal_torque_nm, now.internal_torque_nm) - p.internal_torque_nm;
+  const double variance = options.effort_noise_nm * options.effort_noise_nm * (1.0 / rows + 1.0 / p.rows) +
+                          change.dot(internal_torque[j].covariance * change) + internal * internal;
+  constexpr double kNoiseMultiple = 4.0;
+  return std::min(single, kNoiseMultiple * std::sqrt(variance) *
+                              std::abs(joint[j].mean[kScale] * ComplianceAtDepth(j)));
 }
 
 // The evidence for contact from the encoder's travel and the effort's change
@@ -141,7 +165,7 @@ filter_internal::PoseTransitions ComplianceFilter::Impl::PoseChangeEvidence(
   const bool pair = options.quasi_static
                         ? last.valid && now.valid &&
                               std::abs(depth - last.depth_m) <= kMaxHeldDepthChange
-                        : pair_window[j].Add(now, sample.time_s, PairTravel(j), &pose);
+                        : pair_window[j].Add(now, sample.time_s, WindowTravel(j, now), &pose);
   if (pair) {
     const FilterJointState& s = joint[j];
     const InternalTorque::Vector4 change = pose.arm_regressor - last.arm_regressor;

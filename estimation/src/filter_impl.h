@@ -114,12 +114,12 @@ struct LastPose {
 };
 // A continuous log's rows in windows that do not overlap (each row's noise
 // counted once): the means of two consecutive windows are a pose pair. A
-// window lasts kPairWindowS at least, and until the encoder has moved by a
-// bend that would show above single rows' effort noise (`min_travel_rad`:
-// the arm's own torque changes with its motion, which a mean's σ_e²/n does
-// not cover) or kMaxPairWindowS has passed. Means, because a row's θ̈ (and
-// so its inertial doubt) flickers with the encoder's counts while a window's
-// mean is the change of its speed (docs/decisions/contact-pair-windows.md).
+// window lasts kPairWindowS at least, and until the encoder has moved by
+// `min_travel_rad` (a bend that would show above the pair's noise:
+// WindowTravel) or kMaxPairWindowS has passed. Means, because a row's θ̈
+// (and so its inertial doubt) flickers with the encoder's counts while a
+// window's mean is the change of its speed; their effort noise is σ_e²/n
+// (docs/decisions/contact-pair-windows.md).
 constexpr double kPairWindowS = 0.05, kMaxPairWindowS = 1.0;
 struct PairWindow {
   int rows = 0;
@@ -227,7 +227,7 @@ struct ComplianceFilter::Impl {
   Eigen::Vector3d LevelPose(const FilterSample& sample) const;  // the free level's pose
   double ArmStill() const;
   void LearnHold();
-  double PairTravel(int j);
+  double PairTravel(int j), WindowTravel(int j, const filter_internal::LastPose& now);
   void FinishEffort(const FilterSample& sample, int j, bool unloaded, StepTally* tally);
   void UpdateEffortBranches(const FilterSample& sample, int j, bool unloaded, StepTally* tally);
   void PredictBranchGap(int j, double encoder_increment, double load_step);

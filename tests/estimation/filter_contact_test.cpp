@@ -233,7 +233,7 @@ TEST(FilterContact, ASlowPushIsRecognisedByItsBend) {
 // followed since the push began (filter_impl.h, branch_gap), not the free
 // tip's: the state is the mixture of the two, and the contact's is kept.
 // Measured (seeds 1-3, 100 / 1500 Hz): when both joints are first 99 %
-// sure, joint 1 is 9.4-9.7 / 11.8-12.0 mrad off of a 26.6 / 25.5 mrad
+// sure, joint 1 is 9.0-9.9 / 11.3 mrad off of a 25.7 / 24.4 mrad
 // deflection (the shaft's offset comes over the next rows); with one
 // Gaussian collapsed after each effort (GPB1) 12.8-22.2 / 29.0-29.1 mrad
 // off: uncorrected at 1500 Hz.

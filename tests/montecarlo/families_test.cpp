@@ -60,9 +60,9 @@ TEST(FamilyStudy, TheFilterIsHonestOnInstrumentsUnlikeTheDefaultsAt1500Hz) {
 // its free motion (study key arm_calibration) are the learned arm torque's
 // prior: on the first 100 trials the filter's median tip error against
 // equation (2)'s and its held coverage, with and without them (about 14 s).
-// Measured: 0.925 and 88.7 % without (below equation (2), as issue 26 asks),
-// 0.734 and 93.0 % with; neither honest over the whole study yet (NEES
-// 3.79 and 2.59: docs/validation.md "still short").
+// Measured: 0.866 and 89.3 % without (below equation (2), as issue 26 asks),
+// 0.656 and 94.3 % with; neither honest over the whole study yet (NEES
+// 3.53 and 2.16: docs/validation.md "still short").
 struct OnlineFigures {
   double filter_over_equation2 = 0.0, coverage = 0.0;
 };
