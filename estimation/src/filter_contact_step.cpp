@@ -114,37 +114,40 @@ void ComplianceFilter::Impl::LearnHold() {
       1.0 / (1.0 + std::exp(std::clamp(std::log1p(-h) - std::log(h) - log_odds, -700.0, 700.0)));
 }
 
-// The encoder's travel over which a held shaft's bend shows above a pose
-// pair's effort noise: four of its standard deviations, √2·σ_e, as a bend
-// (single rows': the most a window waits for, WindowTravel).
-double ComplianceFilter::Impl::PairTravel(int j) {
-  constexpr double kNoiseMultiple = 4.0;
-  return kNoiseMultiple * std::sqrt(2.0) * options.effort_noise_nm *
-         std::abs(joint[j].mean[kScale] * ComplianceAtDepth(j));
+namespace {
+// The variance of what the arm's own torque does between two poses: the
+// further effects' change and the learned torque's doubt over the change of
+// motion (its regressor's), which a pair of poses counts as noise.
+double ArmTorqueChangeVariance(const LastPose& a, const LastPose& b, const InternalTorque& arm) {
+  const InternalTorque::Vector4 change = a.arm_regressor - b.arm_regressor;
+  const double internal = a.internal_torque_nm - b.internal_torque_nm;
+  return internal * internal + change.dot(arm.covariance * change);
 }
+}  // namespace
 
-// The travel a continuous log's pair window waits for: a bend of four
-// standard deviations of the pair it would close now — the means' noise and
-// the learned arm torque's doubt over the change of motion — and never more
-// than single rows' (PairTravel): within a steady push the windows are short,
-// across a change of motion (a push's start, a stepping motor's holds) long.
-double ComplianceFilter::Impl::WindowTravel(int j, const LastPose& now) {
-  const double single = PairTravel(j);
-  const PairWindow& w = pair_window[j];
-  if (!w.previous.valid || !now.valid) return single;
-  const double rows = w.rows + 1.0;
-  const LastPose& p = w.previous;
-  const auto mean = [&](double sum, double row) { return w.rows > 0 ? (sum + row) / rows : row; };
-  const InternalTorque::Vector4 regressor =
-      w.rows > 0 ? InternalTorque::Vector4((w.sum.arm_regressor + now.arm_regressor) / rows)
-                 : now.arm_regressor;
-  const InternalTorque::Vector4 change = regressor - p.arm_regressor;
-  const double internal = mean(w.sum.internal_torque_nm, now.internal_torque_nm) - p.internal_torque_nm;
-  const double variance = options.effort_noise_nm * options.effort_noise_nm * (1.0 / rows + 1.0 / p.rows) +
-                          change.dot(internal_torque[j].covariance * change) + internal * internal;
+// The encoder's travel a continuous log's pair window waits for: a bend of
+// four standard deviations of the pair it would close with this row — the
+// means' noise σ_e²(1/n + 1/n_previous) and the arm's torque change
+// (ArmTorqueChangeVariance) — and never more than single rows' √2·σ_e:
+// within a steady push the windows are short, across a change of motion (a
+// push's start, a stepping motor's holds) long. A window younger than
+// kPairWindowS cannot close, and its travel is not computed.
+double ComplianceFilter::Impl::WindowTravel(int j, const LastPose& now, double time_s) {
   constexpr double kNoiseMultiple = 4.0;
-  return std::min(single, kNoiseMultiple * std::sqrt(variance) *
-                              std::abs(joint[j].mean[kScale] * ComplianceAtDepth(j)));
+  double sd = std::sqrt(2.0) * options.effort_noise_nm;
+  const PairWindow& w = pair_window[j];
+  if (w.previous.valid && now.valid && w.rows > 0 && time_s - w.start_s >= kPairWindowS) {
+    LastPose closing;
+    closing.rows = w.rows + 1.0;
+    closing.arm_regressor = (w.sum.arm_regressor + now.arm_regressor) / closing.rows;
+    closing.internal_torque_nm = (w.sum.internal_torque_nm + now.internal_torque_nm) / closing.rows;
+    const LastPose& p = w.previous;
+    const double variance =
+        options.effort_noise_nm * options.effort_noise_nm * (1.0 / closing.rows + 1.0 / p.rows) +
+        ArmTorqueChangeVariance(closing, p, internal_torque[j]);
+    sd = std::min(sd, std::sqrt(variance));
+  }
+  return kNoiseMultiple * sd * std::abs(joint[j].mean[kScale] * ComplianceAtDepth(j));
 }
 
 // The evidence for contact from the encoder's travel and the effort's change
@@ -165,13 +168,11 @@ filter_internal::PoseTransitions ComplianceFilter::Impl::PoseChangeEvidence(
   const bool pair = options.quasi_static
                         ? last.valid && now.valid &&
                               std::abs(depth - last.depth_m) <= kMaxHeldDepthChange
-                        : pair_window[j].Add(now, sample.time_s, WindowTravel(j, now), &pose);
+                        : pair_window[j].Add(now, sample.time_s,
+                                             WindowTravel(j, now, sample.time_s), &pose);
   if (pair) {
     const FilterJointState& s = joint[j];
-    const InternalTorque::Vector4 change = pose.arm_regressor - last.arm_regressor;
-    const double internal_change =
-        std::hypot(pose.internal_torque_nm - last.internal_torque_nm,
-                   std::sqrt(change.dot(arm.covariance * change)));
+    const double internal_change = std::sqrt(ArmTorqueChangeVariance(pose, last, arm));
     evidence = QuasiStaticTransitions(
         options, pose.residual_nm, pose.residual_nm - last.residual_nm,
         pose.encoder_rad - last.encoder_rad, s.mean[kScale] * ComplianceAtDepth(j),

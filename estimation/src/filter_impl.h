@@ -227,7 +227,7 @@ struct ComplianceFilter::Impl {
   Eigen::Vector3d LevelPose(const FilterSample& sample) const;  // the free level's pose
   double ArmStill() const;
   void LearnHold();
-  double PairTravel(int j), WindowTravel(int j, const filter_internal::LastPose& now);
+  double WindowTravel(int j, const filter_internal::LastPose& now, double time_s);
   void FinishEffort(const FilterSample& sample, int j, bool unloaded, StepTally* tally);
   void UpdateEffortBranches(const FilterSample& sample, int j, bool unloaded, StepTally* tally);
   void PredictBranchGap(int j, double encoder_increment, double load_step);

@@ -12,6 +12,7 @@
 
 #include "../../estimation/src/filter_contact_chain.h"
 #include "../support/paper_parameters.h"
+#include "../support/pushed_tip.h"
 #include "pliant/estimation/compliance_correction.h"
 #include "pliant/estimation/filter.h"
 #include "pliant/models/effects/backlash_hysteresis.h"
@@ -142,8 +143,7 @@ PushesOutcome RepeatedPushes(bool learn_rates, int pushes, double free_s, unsign
       const double acceleration = k == 0 ? 0.0 : (velocity - motor_velocity[j]) * rate;
       motor[j] = angle;
       motor_velocity[j] = velocity;
-      const double internal = 0.04 * acceleration + 0.08 * std::tanh(velocity / 0.05) +
-                              0.03 * velocity;
+      const double internal = testing::ArmTorqueNm(acceleration, velocity);
       s.encoder_rad[j] = angle + o.encoder_noise_rad * normal(rng);
       s.effort_nm[j] = models::BiasTorqueAt(jp, s.encoder_rad[j], depth) + internal + load[j] +
                        o.effort_noise_nm * normal(rng);

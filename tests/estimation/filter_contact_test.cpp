@@ -53,8 +53,7 @@ std::vector<Row> FreeMotionWithInternalTorque(double contact_nm, double contact_
     for (int j = 0; j < 2; ++j) {
       const auto& jp = p.joints[j];
       const double load = (contact && j == 0) ? contact_nm : 0.0;
-      const double internal = 0.04 * acceleration[j] + 0.08 * std::tanh(velocity[j] / 0.05) +
-                              0.03 * velocity[j];
+      const double internal = testing::ArmTorqueNm(acceleration[j], velocity[j]);
       const double bend = load != 0.0 ? jp.backlash_rad * std::copysign(1.0, load) +
                                             models::ComplianceAt(jp, depth) * load
                                       : 0.0;
@@ -118,8 +117,8 @@ struct PushOutcome {
   Eigen::Vector2d equation2_rms_rad{0, 0};  // and equation (2)'s
 };
 
-// The arm's own torque on a moving motor (its angle tip + b + K(L)·τ, noise-free),
-// J·θ̈ + Coulomb + viscous, as FreeMotionWithInternalTorque's.
+// The arm's own torque (testing::ArmTorqueNm) on a moving motor, its angle
+// tip + b + K(L)·τ noise-free.
 void AddArmTorque(const models::ModelParameters& p, double depth, const Eigen::Vector2d& tip,
                   const Eigen::Vector2d& backlash, const Eigen::Vector2d& load, double rate_hz,
                   Eigen::Matrix2d* motor, FilterSample* s) {
@@ -128,7 +127,7 @@ void AddArmTorque(const models::ModelParameters& p, double depth, const Eigen::V
     const double speed = (angle - (*motor)(j, 0)) * rate_hz;
     const double acceleration = (speed - (*motor)(j, 1)) * rate_hz;
     (*motor)(j, 0) = angle, (*motor)(j, 1) = speed;
-    s->effort_nm[j] += 0.04 * acceleration + 0.08 * std::tanh(speed / 0.05) + 0.03 * speed;
+    s->effort_nm[j] += testing::ArmTorqueNm(acceleration, speed);
   }
 }
 

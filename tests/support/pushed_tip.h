@@ -2,6 +2,7 @@
 // own model: the sample a test feeds the filter without the tip_fixed hint.
 #pragma once
 
+#include <cmath>
 #include <random>
 
 #include <Eigen/Core>
@@ -11,6 +12,13 @@
 #include "pliant/models/parameters.h"
 
 namespace pliant::estimation::testing {
+
+// The arm's own torque the tests put into a moving motor's effort (N·m):
+// J·θ̈ + Coulomb + viscous, about the level of the real dVRK bag's
+// unmodelled residual (0.1 N·m RMS in free motion).
+inline double ArmTorqueNm(double acceleration_rad_s2, double speed_rad_s) {
+  return 0.04 * acceleration_rad_s2 + 0.08 * std::tanh(speed_rad_s / 0.05) + 0.03 * speed_rad_s;
+}
 
 // The shaft's offset moves by the hysteresis (`backlash`, rad, carried from
 // sample to sample), the encoder reads tip + b + K(L)·τ and the effort the
