@@ -133,6 +133,7 @@ void ComplianceFilter::Impl::Reset() {
     last_gain.setZero();
     last_pose[j] = filter_internal::LastPose{};
     pair_window[j] = filter_internal::PairWindow{};
+    free_pair_change[j] = filter_internal::FreeArmPairChange{};
     free_motion[j] = filter_internal::FreeArmMotion{};
     unmodelled[j].variance = options.moving_effort_sd_nm * options.moving_effort_sd_nm;
     internal_torque[j].Start(options, ArmPriorSd(options, parameters.effects, j));

@@ -27,6 +27,27 @@ class ContactRates {
   bool believed_ = false;                  // inside an episode the chain believed
 };
 
+// What a free arm's own torque changes between two pair windows beyond the
+// model's doubt of it (the learned torque's, the means' noise): a real arm's
+// unmodelled friction and inertia, which pairs would otherwise read as a load
+// following the encoder. Taught only by pairs that no held tip explains —
+// the encoder crossed more than the clearance and the held law lost to the
+// free one — weighted by the chain's odds that nothing held the tip: a push
+// believed late cannot teach it (docs/decisions/contact-pair-windows.md).
+class FreeArmPairChange {
+ public:
+  double variance_nm2() const { return variance_; }
+  // A closed pair: its effort change, the model's variance of it, and the
+  // share of it that only the free law explains (0: it could be a held tip's).
+  void Offer(double change_nm, double model_nm2, double free_share);
+  // The row that closed it, once the chain has weighed it: taught with `free_weight`.
+  void Learn(double free_weight);
+
+ private:
+  double variance_ = 0.0, lessons_ = 0.0;  // a running mean over kMemoryPairs pairs
+  double change_nm_ = 0.0, model_nm2_ = 0.0, share_ = 0.0;
+};
+
 // The contact chain's prediction for one step (filter_contact.cpp).
 struct ContactPrior {
   double probability = 0.0;  // of contact, before this step's effort

@@ -42,4 +42,21 @@ double ContactLogDensity(double radius2_nm2, int joints, double s_lo2, double s_
   return std::log(mass / (2.0 * std::sqrt(radius2_nm2) * log_range));
 }
 
+// A running mean of the change's excess over the model's variance, forgotten
+// over 50 pairs (2.5-5 s of free motion), winsorised at 3σ of the pair's free
+// law so that one missed contact does not swamp it.
+void FreeArmPairChange::Offer(double change_nm, double model_nm2, double free_share) {
+  change_nm_ = change_nm, model_nm2_ = model_nm2, share_ = free_share;
+}
+
+void FreeArmPairChange::Learn(double free_weight) {
+  constexpr double kMemoryPairs = 50.0;
+  const double weight = std::clamp(free_weight, 0.0, 1.0) * share_;
+  share_ = 0.0;
+  if (!(weight > 0.0) || !std::isfinite(change_nm_) || !(model_nm2_ > 0.0)) return;
+  lessons_ = std::min(lessons_ + weight, kMemoryPairs);
+  const double square = std::min(change_nm_ * change_nm_, 9.0 * (model_nm2_ + variance_));
+  variance_ += weight / lessons_ * (std::max(0.0, square - model_nm2_) - variance_);
+}
+
 }  // namespace pliant::estimation::filter_internal

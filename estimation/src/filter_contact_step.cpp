@@ -172,12 +172,24 @@ filter_internal::PoseTransitions ComplianceFilter::Impl::PoseChangeEvidence(
                                              WindowTravel(j, now, sample.time_s), &pose);
   if (pair) {
     const FilterJointState& s = joint[j];
-    const double internal_change = std::sqrt(ArmTorqueChangeVariance(pose, last, arm));
-    evidence = QuasiStaticTransitions(
-        options, pose.residual_nm, pose.residual_nm - last.residual_nm,
-        pose.encoder_rad - last.encoder_rad, s.mean[kScale] * ComplianceAtDepth(j),
-        std::sqrt(s.covariance(kScale, kScale)), delta[j], internal_change, free_variance,
-        1.0 / pose.rows + 1.0 / last.rows);
+    const double noise_rows = 1.0 / pose.rows + 1.0 / last.rows;
+    const double arm_change = ArmTorqueChangeVariance(pose, last, arm);
+    const double learned = options.quasi_static ? 0.0 : free_pair_change[j].variance_nm2();
+    const double change = pose.residual_nm - last.residual_nm;
+    const double travel = pose.encoder_rad - last.encoder_rad;
+    evidence = QuasiStaticTransitions(options, pose.residual_nm, change, travel,
+                                      s.mean[kScale] * ComplianceAtDepth(j),
+                                      std::sqrt(s.covariance(kScale, kScale)), delta[j],
+                                      std::sqrt(arm_change + learned), free_variance, noise_rows);
+    if (!options.quasi_static && evidence.valid) {
+      // A travel within the clearance could be a held tip's crossing at no load.
+      const double free_share =
+          std::abs(travel) > 2.0 * delta[j]
+              ? 1.0 / (1.0 + std::exp(std::clamp(evidence.held - evidence.free, -700.0, 700.0)))
+              : 0.0;
+      const double sd_e = options.effort_noise_nm;
+      free_pair_change[j].Offer(change, arm_change + sd_e * sd_e * noise_rows, free_share);
+    }
   }
   if (options.quasi_static || pair) last = pose;
   return evidence;

@@ -335,6 +335,7 @@ void ComplianceFilter::Impl::FinishEffort(const FilterSample& sample, int j, boo
                             -std::expm1(-step_dt / options.unmodelled_effort_memory),
                         e.residual, e.rest);
     if (!options.quasi_static) {
+      free_pair_change[j].Learn(1.0 - contact_probability[j] * held_given_contact);
       InternalTorque& arm = internal_torque[j];
       arm.AddLevelRow(ArmStill(), e.residual + arm.level.Torque(), LevelPose(sample));
       internal_torque[j].Learn(e.moving, e.residual + e.arm_torque,

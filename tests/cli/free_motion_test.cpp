@@ -28,7 +28,7 @@ const std::string kCli = PLIANT_CLI;
 const std::string kFree = PLIANT_SOURCE_DIR "/data/real/crtk2022_psm2_free.csv";
 
 struct FalseCorrection {
-  double median_mm = 0.0;
+  double median_mm = 0.0, p95_mm = 0.0;
   double share_within_two_sd = 0.0;
 };
 
@@ -57,9 +57,9 @@ FalseCorrection Measure(const fs::path& output) {
   EXPECT_EQ(corrections.size(), 3420u);
   FalseCorrection f;
   if (corrections.empty()) return f;
-  std::nth_element(corrections.begin(), corrections.begin() + corrections.size() / 2,
-                   corrections.end());
+  std::sort(corrections.begin(), corrections.end());
   f.median_mm = corrections[corrections.size() / 2];
+  f.p95_mm = corrections[corrections.size() * 95 / 100];
   f.share_within_two_sd = within / double(corrections.size());
   return f;
 }
@@ -77,9 +77,13 @@ TEST(RealFreeMotion, TheFilterLeavesAFreeArmAlone) {
     EXPECT_EQ(r.exit_code, 0) << r.err;
     return Measure(dir / name);
   };
-  // Measured: median 0.0024 mm, 98.2 % of rows within 2σ.
+  // Measured: median 0.0017 mm, p95 0.272 mm, 98.2 % of rows within 2σ.
+  // The tail is what the free arm's own torque changes between pair windows
+  // and the pairs read as a load following the encoder: learned from the
+  // pairs no held tip explains (FreeArmPairChange), p95 0.419 mm without it.
   const FalseCorrection inferred = run("", "inferred.csv");
   EXPECT_LE(inferred.median_mm, 0.3);
+  EXPECT_LE(inferred.p95_mm, 0.3);
   EXPECT_GE(inferred.share_within_two_sd, 0.95);
   // The contact chain's rates learned from this log (its false contacts are
   // short) do no harm beside the priors' fixed rates (measured: 0.0013 mm,
