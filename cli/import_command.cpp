@@ -27,67 +27,31 @@ struct ImportCommandOptions {
 };
 
 io::ImportFormat ChooseFormat(const ImportCommandOptions& options) {
+  const io::RecordingFormat chosen = io::ChooseImportFormat(options.inputs, options.format);
   if (!options.format.empty()) {
-    const io::ImportFormat format = *io::ParseImportFormat(options.format);
     std::fprintf(stderr, "pliant import: format %s (--format)\n", options.format.c_str());
-    return format;
   }
-  const io::DetectedFormat first = io::DetectImportFormat(options.inputs.front());
-  for (const std::string& path : options.inputs) {
-    const io::DetectedFormat detected = io::DetectImportFormat(path);
-    if (detected.format != first.format) {
-      throw io::InputError(path, 0, 0,
-                           "the file is " + std::string(io::ImportFormatName(detected.format)) +
-                               " but " + options.inputs.front() + " is " +
-                               std::string(io::ImportFormatName(first.format)),
-                           "import the files of one recording together, or name the format with "
-                           "--format");
-    }
-    std::fprintf(stderr, "pliant import: %s: format %s (from %s)\n", path.c_str(),
-                 std::string(io::ImportFormatName(detected.format)).c_str(),
-                 detected.evidence.c_str());
+  for (const std::string& line : chosen.evidence) {
+    std::fprintf(stderr, "pliant import: %s\n", line.c_str());
   }
-  return first.format;
+  return chosen.format;
 }
 
-// An option that the chosen format does not read is a mistake, not a no-op.
-void CheckOptionsFit(const ImportCommandOptions& options, io::ImportFormat format) {
-  const auto refuse = [&](const char* option, const char* format_names) {
-    throw io::InputError(option, 0, 0,
-                         std::string(option) + " applies to " + format_names + ", not " +
-                             std::string(io::ImportFormatName(format)),
-                         std::string("leave out ") + option);
-  };
-  const bool jhu = format == io::ImportFormat::kJhu2017ClampedBeam ||
-                   format == io::ImportFormat::kJhu2017BiasSweep;
-  if (!options.arm.empty() && format != io::ImportFormat::kRos1Bag) refuse("--arm", "ros1-bag");
-  if (options.joint != 0 && !jhu) refuse("--joint", "the jhu2017 formats");
-  if (!options.topic.empty() && format != io::ImportFormat::kRos2Csv) refuse("--topic", "ros2-csv");
-}
-
-io::Log ReadBag(const ImportCommandOptions& options) {
-  const std::string& path = options.inputs.front();
-  if (options.inputs.size() != 1) {
-    throw io::InputError(options.inputs[1], 0, 0, "ros1-bag imports one bag at a time",
-                         "run pliant import once per bag");
-  }
+// pliant::ros1's reader, where it was built.
+io::BagReader BagReader(const ImportCommandOptions& options) {
 #ifdef PLIANT_HAVE_ROS1
-  return ros::ReadCrtkBag(path, {options.arm});
+  return [arm = options.arm](const std::string& path) { return ros::ReadCrtkBag(path, {arm}); };
 #else
-  throw io::InputError(path, 0, 0,
-                       "this pliant was built without ROS 1 bag support (cmake's 'ROS 1 bag "
-                       "support' line says why)",
-                       "install Debian's librosbag-dev libroscpp-dev libsensor-msgs-dev "
-                       "(scripts/install-deps.sh does) and rebuild pliant");
+  (void)options;
+  return {};
 #endif
 }
 
 void RunImport(const ImportCommandOptions& options) {
   const io::ImportFormat format = ChooseFormat(options);
-  CheckOptionsFit(options, format);
-  const io::Log log = format == io::ImportFormat::kRos1Bag
-                          ? ReadBag(options)
-                          : io::ImportText(format, options.inputs, {options.joint, options.topic});
+  io::CheckImportOptions(format, {options.joint, options.topic}, !options.arm.empty());
+  const io::Log log = io::ImportRecording(format, options.inputs, {options.joint, options.topic},
+                                          BagReader(options));
   io::WriteLog(options.output_path, log);
   std::string columns;
   for (const auto& name : log.header.columns) columns += (columns.empty() ? "" : ",") + name;

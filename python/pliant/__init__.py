@@ -43,7 +43,7 @@ from ._pliant import (  # the public API, with __all__ below
 from . import _pliant
 
 __all__ = [
-    "InputError", "Log", "read_log", "write_log", "Parameters", "load_parameters",
+    "InputError", "Log", "read_log", "import_recording", "write_log", "Parameters", "load_parameters",
     "parameters_from_json", "correct", "correct_log", "identify", "identify_arm_dynamics",
     "diagnose", "filter_log",
     "Filter", "FilterEstimate", "filter_option_defaults", "FLAG_REJECTED", "FLAG_MISSING",
@@ -78,6 +78,28 @@ def read_log(path, skip_bad_rows=False):
     """
     names, values, metadata = _pliant._read_log(os.fspath(path), skip_bad_rows)
     return Log(zip(names, values), metadata)
+
+
+def import_recording(paths, format=None, joint=0, topic=None, arm=None):
+    """Imports a real recording into a Log, as ``pliant import`` does (docs/import.md).
+
+    paths: one file, or the files of one recording (a ROS 2 extractor's
+    measured_js and setpoint_js CSVs). format: "jhu2017-clamped-beam",
+    "jhu2017-bias-sweep", "ros1-bag" or "ros2-csv"; by default recognised from
+    the files' content, and ``log.import_format`` / ``log.import_evidence`` say
+    which and why. joint: the JHU files' joint under test (1 or 2; default from
+    the file name); topic: a single ros2-csv file's topic; arm: a bag's arm
+    (e.g. "PSM2"; default its only one). An option the format does not read,
+    mixed formats, or a bag where pliant was built without ROS 1 raise
+    InputError; write the result with write_log.
+    """
+    if isinstance(paths, (str, bytes, os.PathLike)):
+        paths = [paths]
+    (names, values, metadata), chosen, evidence = _pliant._import_recording(
+        [os.fspath(p) for p in paths], format or "", int(joint), topic or "", arm or "")
+    log = Log(zip(names, values), metadata)
+    log.import_format, log.import_evidence = chosen, list(evidence)
+    return log
 
 
 def write_log(path, log, metadata=None):

@@ -1,6 +1,7 @@
 // Canonical logs (docs/log-format.md) to and from numpy: read with
 // io::ReadLog, written with io::WriteLog (atomic, shortest round-trip numbers),
-// so a log read here is the log every pliant command reads.
+// so a log read here is the log every pliant command reads; real recordings
+// imported as `pliant import` does.
 #include <string>
 #include <utility>
 #include <vector>
@@ -9,9 +10,13 @@
 #include <pybind11/stl.h>
 
 #include "bindings.h"
+#include "pliant/io/import.h"
 #include "pliant/io/input_error.h"
 #include "pliant/io/log_reader.h"
 #include "pliant/io/log_writer.h"
+#ifdef PLIANT_HAVE_ROS1
+#include "pliant/ros/crtk_bag.h"
+#endif
 
 namespace pliant::python {
 namespace {
@@ -21,12 +26,7 @@ using Column = py::array_t<double, py::array::c_style | py::array::forcecast>;
 
 // (columns, values of shape (columns, rows), metadata): each column one
 // contiguous row of `values`, which __init__.py hands out as a dict.
-py::tuple ReadLogColumns(const std::string& path, bool skip_bad_rows) {
-  io::Log log;
-  {
-    py::gil_scoped_release unlocked;
-    log = io::ReadLog(path, {skip_bad_rows});
-  }
+py::tuple Columns(const io::Log& log) {
   const std::size_t rows = log.Rows(), columns = log.Columns();
   py::array_t<double> values({columns, rows});
   auto out = values.mutable_unchecked<2>();
@@ -34,6 +34,38 @@ py::tuple ReadLogColumns(const std::string& path, bool skip_bad_rows) {
     for (std::size_t c = 0; c < columns; ++c) out(c, r) = log.values[r * columns + c];
   }
   return py::make_tuple(log.header.columns, values, log.header.metadata);
+}
+
+py::tuple ReadLogColumns(const std::string& path, bool skip_bad_rows) {
+  io::Log log;
+  {
+    py::gil_scoped_release unlocked;
+    log = io::ReadLog(path, {skip_bad_rows});
+  }
+  return Columns(log);
+}
+
+// A real recording (docs/import.md) as ReadLogColumns gives a log, and the
+// lines saying how its format was recognised: `pliant import`'s rules
+// (io::ChooseImportFormat, CheckImportOptions, ImportRecording).
+py::tuple ImportRecordingColumns(const std::vector<std::string>& paths,
+                                 const std::string& format_name, int joint,
+                                 const std::string& topic, const std::string& arm) {
+  io::Log log;
+  io::RecordingFormat chosen;
+  {
+    py::gil_scoped_release unlocked;
+    chosen = io::ChooseImportFormat(paths, format_name);
+    const io::ImportOptions options{joint, topic};
+    io::CheckImportOptions(chosen.format, options, !arm.empty());
+    io::BagReader read_bag;
+#ifdef PLIANT_HAVE_ROS1
+    read_bag = [&arm](const std::string& path) { return ros::ReadCrtkBag(path, {arm}); };
+#endif
+    log = io::ImportRecording(chosen.format, paths, options, read_bag);
+  }
+  return py::make_tuple(Columns(log), std::string(io::ImportFormatName(chosen.format)),
+                        chosen.evidence);
 }
 
 void WriteLogColumns(const std::string& path, const std::vector<std::string>& names,
@@ -72,6 +104,10 @@ void BindLogs(py::module_& m) {
   m.def("_write_log", &WriteLogColumns, py::arg("path"), py::arg("names"), py::arg("columns"),
         py::arg("metadata"),
         "Writes a canonical log atomically from named columns; see pliant.write_log.");
+  m.def("_import_recording", &ImportRecordingColumns, py::arg("paths"), py::arg("format"),
+        py::arg("joint"), py::arg("topic"), py::arg("arm"),
+        "((columns, values, metadata), format, evidence) of a real recording; see "
+        "pliant.import_recording.");
 }
 
 }  // namespace pliant::python

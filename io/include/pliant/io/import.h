@@ -10,6 +10,7 @@
 // other joint's q and tau out (LogHeader::JointRecorded) and say
 // "# timing: quasi-static", with t the row index. Nothing is invented.
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -65,5 +66,27 @@ Log ImportRos2Csv(const std::vector<std::string>& paths, const ImportOptions& op
 /// @throws InputError for bad input, std::invalid_argument for ros1-bag.
 Log ImportText(ImportFormat format, const std::vector<std::string>& paths,
                const ImportOptions& options);
+
+/// A recording's format: `format_name` when given (one of ImportFormatNames()),
+/// else recognised from each file, all of one format; evidence: per file,
+/// "PATH: format NAME (from WHAT)" (empty when named).
+/// @throws InputError for an unknown name, an unrecognised file or mixed formats.
+struct RecordingFormat {
+  ImportFormat format = ImportFormat::kRos2Csv;
+  std::vector<std::string> evidence;
+};
+RecordingFormat ChooseImportFormat(const std::vector<std::string>& paths,
+                                   const std::string& format_name);
+
+/// An option the format does not read (--arm but for ros1-bag, --joint but for
+/// the jhu2017 formats, --topic but for ros2-csv) throws InputError naming it.
+void CheckImportOptions(ImportFormat format, const ImportOptions& options, bool arm_given);
+
+/// A recording in the chosen format: the text formats by ImportText, a ROS 1
+/// bag (one at a time) by read_bag — pliant::ros1's ReadCrtkBag where it was
+/// built; without one, an InputError saying how to build it.
+using BagReader = std::function<Log(const std::string& path)>;
+Log ImportRecording(ImportFormat format, const std::vector<std::string>& paths,
+                    const ImportOptions& options, const BagReader& read_bag);
 
 }  // namespace pliant::io
