@@ -44,7 +44,7 @@ class FreeArmPairChange {
   void Learn(double free_weight);
 
  private:
-  double variance_ = 0.0, lessons_ = 0.0;  // a running mean over kMemoryPairs pairs
+  double variance_ = 0.0, lessons_ = 0.0;  // a running mean over the last 50 pairs
   double change_nm_ = 0.0, model_nm2_ = 0.0, share_ = 0.0;
 };
 

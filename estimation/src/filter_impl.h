@@ -347,7 +347,8 @@ struct ComplianceFilter::Impl {
   // (each branch's own covariance is P_w) instead of adding it once more.
   Vector branch_spread[2];
   bool branched[2] = {true, true};  // D or E may be non-zero (false: both are 0, nothing to carry)
-  double branch_last[2] = {0.0, 0.0}, branch_continuing[2] = {0.0, 0.0}, branch_ended[2] = {0.0, 0.0};
+  double branch_last[2] = {0.0, 0.0}, branch_continuing[2] = {0.0, 0.0};
+  double branch_ended[2] = {0.0, 0.0};
   Vector last_gain;  // ScalarUpdate's last gain (0: rejected)
   // Given a contact, the chance that it holds the tip (its load follows the
   // bend) rather than moving with the arm: the pair windows' evidence
