@@ -38,20 +38,20 @@ io::ImportFormat ChooseFormat(const ImportCommandOptions& options) {
 }
 
 // pliant::ros1's reader, where it was built.
-io::BagReader BagReader(const ImportCommandOptions& options) {
+io::BagReader BagReader() {
 #ifdef PLIANT_HAVE_ROS1
-  return [arm = options.arm](const std::string& path) { return ros::ReadCrtkBag(path, {arm}); };
+  return [](const std::string& path, const std::string& arm) {
+    return ros::ReadCrtkBag(path, {arm});
+  };
 #else
-  (void)options;
   return {};
 #endif
 }
 
 void RunImport(const ImportCommandOptions& options) {
   const io::ImportFormat format = ChooseFormat(options);
-  io::CheckImportOptions(format, {options.joint, options.topic}, !options.arm.empty());
-  const io::Log log = io::ImportRecording(format, options.inputs, {options.joint, options.topic},
-                                          BagReader(options));
+  const io::Log log = io::ImportRecording(
+      format, options.inputs, {options.joint, options.topic, options.arm}, BagReader());
   io::WriteLog(options.output_path, log);
   std::string columns;
   for (const auto& name : log.header.columns) columns += (columns.empty() ? "" : ",") + name;

@@ -40,8 +40,10 @@ RecordingFormat ChooseImportFormat(const std::vector<std::string>& paths,
   return chosen;
 }
 
+namespace {
+
 // An option that the chosen format does not read is a mistake, not a no-op.
-void CheckImportOptions(ImportFormat format, const ImportOptions& options, bool arm_given) {
+void CheckImportOptions(ImportFormat format, const ImportOptions& options) {
   const auto refuse = [&](const char* option, const char* format_names) {
     throw InputError(option, 0, 0,
                      std::string(option) + " applies to " + format_names + ", not " +
@@ -50,13 +52,16 @@ void CheckImportOptions(ImportFormat format, const ImportOptions& options, bool 
   };
   const bool jhu =
       format == ImportFormat::kJhu2017ClampedBeam || format == ImportFormat::kJhu2017BiasSweep;
-  if (arm_given && format != ImportFormat::kRos1Bag) refuse("--arm", "ros1-bag");
+  if (!options.arm.empty() && format != ImportFormat::kRos1Bag) refuse("--arm", "ros1-bag");
   if (options.joint != 0 && !jhu) refuse("--joint", "the jhu2017 formats");
   if (!options.topic.empty() && format != ImportFormat::kRos2Csv) refuse("--topic", "ros2-csv");
 }
 
+}  // namespace
+
 Log ImportRecording(ImportFormat format, const std::vector<std::string>& paths,
                     const ImportOptions& options, const BagReader& read_bag) {
+  CheckImportOptions(format, options);
   if (format != ImportFormat::kRos1Bag) return ImportText(format, paths, options);
   if (paths.size() != 1) {
     throw InputError(paths.at(1), 0, 0, "ros1-bag imports one bag at a time",
@@ -69,7 +74,7 @@ Log ImportRecording(ImportFormat format, const std::vector<std::string>& paths,
                      "install Debian's librosbag-dev libroscpp-dev libsensor-msgs-dev "
                      "(scripts/install-deps.sh does) and rebuild pliant");
   }
-  return read_bag(paths.front());
+  return read_bag(paths.front(), options.arm);
 }
 
 }  // namespace pliant::io

@@ -47,7 +47,7 @@ py::tuple ReadLogColumns(const std::string& path, bool skip_bad_rows) {
 
 // A real recording (docs/import.md) as ReadLogColumns gives a log, and the
 // lines saying how its format was recognised: `pliant import`'s rules
-// (io::ChooseImportFormat, CheckImportOptions, ImportRecording).
+// (io::ChooseImportFormat, ImportRecording).
 py::tuple ImportRecordingColumns(const std::vector<std::string>& paths,
                                  const std::string& format_name, int joint,
                                  const std::string& topic, const std::string& arm) {
@@ -56,13 +56,13 @@ py::tuple ImportRecordingColumns(const std::vector<std::string>& paths,
   {
     py::gil_scoped_release unlocked;
     chosen = io::ChooseImportFormat(paths, format_name);
-    const io::ImportOptions options{joint, topic};
-    io::CheckImportOptions(chosen.format, options, !arm.empty());
     io::BagReader read_bag;
 #ifdef PLIANT_HAVE_ROS1
-    read_bag = [&arm](const std::string& path) { return ros::ReadCrtkBag(path, {arm}); };
+    read_bag = [](const std::string& path, const std::string& bag_arm) {
+      return ros::ReadCrtkBag(path, {bag_arm});
+    };
 #endif
-    log = io::ImportRecording(chosen.format, paths, options, read_bag);
+    log = io::ImportRecording(chosen.format, paths, {joint, topic, arm}, read_bag);
   }
   return py::make_tuple(Columns(log), std::string(io::ImportFormatName(chosen.format)),
                         chosen.evidence);

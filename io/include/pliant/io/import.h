@@ -45,6 +45,8 @@ struct ImportOptions {
   int joint = 0;
   /// ros2-csv with one file: "measured_js" or "setpoint_js"; "" = from the file name.
   std::string topic;
+  /// ros1-bag: the arm, e.g. "PSM2"; "" = the bag's only one (read by the BagReader).
+  std::string arm;
 };
 
 /// One JHU clamped-beam file: qJ, q3, tauJ, tip_fixed = 1, segment = depth index,
@@ -78,14 +80,13 @@ struct RecordingFormat {
 RecordingFormat ChooseImportFormat(const std::vector<std::string>& paths,
                                    const std::string& format_name);
 
-/// An option the format does not read (--arm but for ros1-bag, --joint but for
-/// the jhu2017 formats, --topic but for ros2-csv) throws InputError naming it.
-void CheckImportOptions(ImportFormat format, const ImportOptions& options, bool arm_given);
-
-/// A recording in the chosen format: the text formats by ImportText, a ROS 1
-/// bag (one at a time) by read_bag — pliant::ros1's ReadCrtkBag where it was
-/// built; without one, an InputError saying how to build it.
-using BagReader = std::function<Log(const std::string& path)>;
+/// A recording in the chosen format, once its options fit it (an option the
+/// format does not read — --arm but for ros1-bag, --joint but for the jhu2017
+/// formats, --topic but for ros2-csv — throws InputError naming it): the text
+/// formats by ImportText, a ROS 1 bag (one at a time) by read_bag —
+/// pliant::ros1's ReadCrtkBag where it was built; without one, an InputError
+/// saying how to build it.
+using BagReader = std::function<Log(const std::string& path, const std::string& arm)>;
 Log ImportRecording(ImportFormat format, const std::vector<std::string>& paths,
                     const ImportOptions& options, const BagReader& read_bag);
 
