@@ -1,5 +1,5 @@
 #pragma once
-// The take-up width of the dead zone, profiled (docs/identification.md,
+// The take-up width of the dead zone, profiled (docs/identification-method.md,
 // docs/decisions/0010-identification-profiled-take-up-width.md).
 //
 // Levenberg–Marquardt with log w free crawls where a hard contact drives w to

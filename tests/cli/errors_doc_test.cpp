@@ -1,7 +1,7 @@
-// docs/errors.md shows real runs: every "$ build/cli/pliant …" line in its text
-// blocks is run here, from a directory that sees the repository's data/,
+// docs/errors.md and errors-runtime.md show real runs: every "$ build/cli/pliant …"
+// line in their text blocks is run here, from a directory that sees the repository's data/,
 // tests/ and experiments/, and its stderr and exit status must be exactly
-// what the page prints after it (up to the "exit N" line). A message changed
+// what the pages print after it (up to the "exit N" line). A message changed
 // in the code without the page, or the page without the code, fails here.
 #include <filesystem>
 #include <sstream>
@@ -54,8 +54,9 @@ std::vector<DocumentedRun> RunsOf(const std::string& page) {
 }
 
 TEST(ErrorsPage, EveryRealRunPrintsWhatThePageShows) {
-  const auto runs = RunsOf(ReadText(kSource + "/docs/errors.md"));
-  ASSERT_GE(runs.size(), 8u) << "docs/errors.md lost its real runs";
+  const auto runs = RunsOf(ReadText(kSource + "/docs/errors.md") +
+                           ReadText(kSource + "/docs/errors-runtime.md"));
+  ASSERT_GE(runs.size(), 8u) << "docs/errors.md and errors-runtime.md lost their real runs";
   const auto dir = FreshDirectory("errors_doc");
   for (const char* shared : {"data", "tests", "experiments"}) {
     fs::create_directory_symlink(fs::path(kSource) / shared, dir / shared);

@@ -1,4 +1,4 @@
-// docs/errors.md's runtime failures, destination checks, warnings and the
+// docs/errors-runtime.md's runtime failures, destination checks, warnings and the
 // unknown command, as a user meets them (the input errors: errors_test.cpp).
 #include <filesystem>
 #include <string>

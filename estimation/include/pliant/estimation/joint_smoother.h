@@ -50,7 +50,7 @@ struct JointSmootherOptions {
   /// The dead-zone width w is bounded below by this many effort-noise sd of
   /// one held-tip sample: a sharper take-up cannot be seen through the noise,
   /// and a hard contact would drive w to 0, where the smooth dead zone becomes
-  /// a step that Levenberg–Marquardt crawls along (docs/identification.md).
+  /// a step that Levenberg–Marquardt crawls along (docs/identification-method.md).
   double deadzone_resolution_sd = 4.0;
   /// true (default): w_j is profiled above that floor, joint by joint (one
   /// extra solve on a hard wall, ~20 on a smooth take-up), and its uncertainty
