@@ -159,7 +159,9 @@ Study ParseStudy(const std::string& text, const std::string& file) {
     const auto& filter = doc["filter"];
     r.Object(filter, "/filter",
              {{"deflection_model_error", false}, {"load_follows_motor", false}, {"infer_contact", false},
-              {"tip_fixed_hint", false}, {"inertial_torque_error", false}, {"unloaded_start_s", false}});
+              {"tip_fixed_hint", false}, {"inertial_torque_error", false}, {"unloaded_start_s", false},
+              {"internal_inertia_sd_kg_m2", false}, {"internal_coulomb_sd_nm", false},
+              {"internal_viscous_sd_nm_s", false}});
     if (filter.contains("deflection_model_error")) {
       s.deflection_model_error = r.Number(filter["deflection_model_error"],
                                           "/filter/deflection_model_error", "(share of K·τ)", 0.0, 1.0);
@@ -188,6 +190,13 @@ Study ParseStudy(const std::string& text, const std::string& file) {
       s.unloaded_start_s =
           r.Number(filter["unloaded_start_s"], "/filter/unloaded_start_s", "s", 0.0, 60.0);
     }
+    const auto prior = [&](const char* key, const char* unit, double* value) {
+      if (!filter.contains(key)) return;
+      *value = r.Number(filter[key], std::string("/filter/") + key, unit, 0.0, 10.0);
+    };
+    prior("internal_inertia_sd_kg_m2", "kg·m²", &s.internal_inertia_sd_kg_m2);
+    prior("internal_coulomb_sd_nm", "N·m", &s.internal_coulomb_sd_nm);
+    prior("internal_viscous_sd_nm_s", "N·m·s/rad", &s.internal_viscous_sd_nm_s);
   }
   if (doc.contains("scenario_set")) s.scenario_set = ReadSet(r, doc["scenario_set"], "/scenario_set");
   // The scenario: a path relative to the study file, its overrides applied.

@@ -186,6 +186,13 @@ TrialResult RunTrial(const Study& study, int trial) {
   if (std::isfinite(study.inertial_torque_error)) {
     options.inertial_torque_error = study.inertial_torque_error;
   }
+  // The learned arm torque's prior σ, where the study sets them.
+  const auto prior = [](double set, double* option) {
+    if (std::isfinite(set)) *option = set;
+  };
+  prior(study.internal_inertia_sd_kg_m2, &options.internal_inertia_sd_kg_m2);
+  prior(study.internal_coulomb_sd_nm, &options.internal_coulomb_sd_nm);
+  prior(study.internal_viscous_sd_nm_s, &options.internal_viscous_sd_nm_s);
   estimation::FilterSmoother smoother(parameters, options);
 
   const io::StandardColumns c(log.header);

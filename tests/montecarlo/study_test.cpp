@@ -156,6 +156,14 @@ TEST(Study, SetsTheHeldLoadModelAndTheInertialError) {
   const Study tared = ParseStudy(StudyText(R"(, "filter": {"unloaded_start_s": 0.15})"), "a.json");
   EXPECT_EQ(tared.unloaded_start_s, 0.15);
   EXPECT_NE(plain.fingerprint, tared.fingerprint);
+  EXPECT_TRUE(std::isnan(plain.internal_coulomb_sd_nm));
+  const Study arm = ParseStudy(
+      StudyText(R"(, "filter": {"internal_inertia_sd_kg_m2": 0.03, "internal_coulomb_sd_nm": 0.02, "internal_viscous_sd_nm_s": 0.01})"),
+      "a.json");
+  EXPECT_EQ(arm.internal_inertia_sd_kg_m2, 0.03);
+  EXPECT_EQ(arm.internal_coulomb_sd_nm, 0.02);
+  EXPECT_EQ(arm.internal_viscous_sd_nm_s, 0.01);
+  EXPECT_NE(plain.fingerprint, arm.fingerprint);
   EXPECT_TRUE(plain.tip_fixed_hint);
   const Study online = ParseStudy(StudyText(R"(, "filter": {"tip_fixed_hint": false})"), "a.json");
   EXPECT_FALSE(online.tip_fixed_hint);
@@ -206,6 +214,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadStudy{",\n \"filter\": {\"inertial_torque_error\": -0.3}", 5,
                  "filter.inertial_torque_error"},
         BadStudy{",\n \"filter\": {\"unloaded_start_s\": -1}", 5, "filter.unloaded_start_s"},
+        BadStudy{",\n \"filter\": {\"internal_coulomb_sd_nm\": -0.1}", 5,
+                 "filter.internal_coulomb_sd_nm"},
         BadStudy{",\n \"filter\": {\"tip_fixed_hint\": \"no\"}", 5, "tip_fixed_hint"}),
     [](const ::testing::TestParamInfo<BadStudy>& info) {
       std::string name;  // the key the message must name, as a test name

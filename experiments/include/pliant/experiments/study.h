@@ -108,6 +108,11 @@ struct Study {
   /// online in a control loop, where nobody says the tip is held.
   bool tip_fixed_hint = true;
   double inertial_torque_error = std::numeric_limits<double>::quiet_NaN();
+  /// FilterOptions' prior σ of the arm torque the filter learns without the
+  /// hint (J kg·m², Coulomb N·m, viscous N·m·s/rad); NaN: the filter's (0.3 each).
+  double internal_inertia_sd_kg_m2 = std::numeric_limits<double>::quiet_NaN();
+  double internal_coulomb_sd_nm = std::numeric_limits<double>::quiet_NaN();
+  double internal_viscous_sd_nm_s = std::numeric_limits<double>::quiet_NaN();
   /// FilterOptions::unloaded_start_s: the seconds at each simulated log's start
   /// with the tip free, the arm still and no load (0: none).
   double unloaded_start_s = 0.0;
