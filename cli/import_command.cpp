@@ -40,9 +40,7 @@ io::ImportFormat ChooseFormat(const ImportCommandOptions& options) {
 // pliant::ros1's reader, where it was built.
 io::BagReader BagReader() {
 #ifdef PLIANT_HAVE_ROS1
-  return [](const std::string& path, const std::string& arm) {
-    return ros::ReadCrtkBag(path, {arm});
-  };
+  return ros::CrtkBagReader();
 #else
   return {};
 #endif

@@ -56,11 +56,9 @@ py::tuple ImportRecordingColumns(const std::vector<std::string>& paths,
   {
     py::gil_scoped_release unlocked;
     chosen = io::ChooseImportFormat(paths, format_name);
-    io::BagReader read_bag;
+    io::BagReader read_bag;  // none: ImportRecording says how to build ROS 1 support
 #ifdef PLIANT_HAVE_ROS1
-    read_bag = [](const std::string& path, const std::string& bag_arm) {
-      return ros::ReadCrtkBag(path, {bag_arm});
-    };
+    read_bag = ros::CrtkBagReader();
 #endif
     log = io::ImportRecording(chosen.format, paths, {joint, topic, arm}, read_bag);
   }

@@ -252,4 +252,8 @@ io::Log ReadCrtkBag(const std::string& path, const CrtkBagOptions& options) {
   return MakeLog(path, arm, measured, setpoint.samples.empty() ? nullptr : &setpoint);
 }
 
+io::BagReader CrtkBagReader() {
+  return [](const std::string& path, const std::string& arm) { return ReadCrtkBag(path, {arm}); };
+}
+
 }  // namespace pliant::ros

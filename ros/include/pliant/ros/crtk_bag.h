@@ -15,6 +15,7 @@
 
 #include <string>
 
+#include "pliant/io/import.h"
 #include "pliant/io/log.h"
 
 namespace pliant::ros {
@@ -28,5 +29,9 @@ struct CrtkBagOptions {
 ///   measured_js, an arm name the bag does not have (the message lists the arms
 ///   found), several arms and no name, or messages too short for joints 1–3.
 pliant::io::Log ReadCrtkBag(const std::string& path, const CrtkBagOptions& options);
+
+/// ReadCrtkBag as io::ImportRecording takes a bag reader (path, arm): what
+/// `pliant import` and pliant.import_recording hand it where ROS 1 was built.
+pliant::io::BagReader CrtkBagReader();
 
 }  // namespace pliant::ros
