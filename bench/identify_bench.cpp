@@ -6,7 +6,8 @@
 //   PLIANT_IDENTIFY_LOGS=/tmp/pliant_identify build/bench/identify_bench \
 //       --benchmark_counters_tabular=true
 //
-// Results are recorded in docs/validation.md.
+// Results are recorded in docs/validation.md (section 2) and, the speed, in
+// docs/validation-studies.md (section 9).
 #include <benchmark/benchmark.h>
 
 #include <cmath>

@@ -1,6 +1,6 @@
 // Parallel efficiency of `pliant montecarlo`'s thread pool: the same 200
 // trials of experiments/studies/divot_study.json on 1 thread (the baseline)
-// and on 2 threads, in one run. Recorded in docs/validation.md, section 8.
+// and on 2 threads, in one run. Recorded in docs/validation-studies.md, section 8.
 //   build/bench/montecarlo_bench --benchmark_counters_tabular=true
 // trials_per_s is per wall second; efficiency = (2-thread rate) / (2 × 1-thread
 // rate). On a shared machine other jobs take cores: cpu_per_trial_ms shows

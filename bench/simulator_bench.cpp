@@ -1,6 +1,6 @@
 // Real-time factor of the simulator (simulated seconds per wall second, one
 // thread) on each of the paper's scenarios, run in full as the scenario files
-// describe them. Recorded in docs/validation.md.
+// describe them. Recorded in docs/validation-studies.md (section 9).
 //   build/bench/simulator_bench --benchmark_counters_tabular=true
 #include <benchmark/benchmark.h>
 

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The loop ends in corrected joints, effect by effect (docs/validation.md section 10).
+"""The loop ends in corrected joints, effect by effect (docs/validation-diagnosis.md section 10).
 
 For each catalogue effect (the hidden effects of tests/diagnostics/diagnosis_test.cpp's
 Catalogue cases, at the same sizes), simulate the instrument with it hidden: the bias sweep

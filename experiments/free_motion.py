@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Do no harm in free motion (docs/validation.md, "The real free-motion bag").
+"""Do no harm in free motion (docs/validation-unlike-defaults.md, "The real free-motion bag").
 
 The shared dVRK 2.x bag (data/real/crtk2022_psm2_free.csv: PSM2 moving at up to 1 rad/s,
 nothing touching the instrument, so the truth is the encoder) filtered without the tip_fixed

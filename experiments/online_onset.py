@@ -2,12 +2,12 @@
 """Where the online filter loses to equation (2): error and coverage by time since each push began.
 
 Simulates the divot scenario's eight pushes at one depth with a light, fast, noisy push (the
-1.5 kHz online family's worst bins: docs/validation.md, "still short"), removes the tip_fixed
-column, runs `pliant filter` (online: contact inferred) and `pliant correct` (equation (2)) with
-the true parameters (data/paper.json), and prints per joint, in bins of time since the push's
-segment began: the deflection (encoder minus true tip), the filter's RMS error, the share of rows
-inside its 95 % interval, its median σ, equation (2)'s RMS error and the median contact
-probability.
+1.5 kHz online family's worst bins: docs/validation-unlike-defaults.md, "still short"), removes
+the tip_fixed column, runs `pliant filter` (online: contact inferred) and `pliant correct`
+(equation (2)) with the true parameters (data/paper.json), and prints per joint, in bins of time
+since the push's segment began: the deflection (encoder minus true tip), the filter's RMS error,
+the share of rows inside its 95 % interval, its median σ, equation (2)'s RMS error and the median
+contact probability.
 
 Usage: online_onset.py PLIANT OUT_DIR [--seed N] [--peak NM] [--speed RAD_S] [--noise NM]
                        [--every-n-periods N] [--params FILE]

@@ -3,7 +3,7 @@
 # seed corpus in tests/fuzz/corpus/<reader>/.
 #   scripts/fuzz.sh                          30 s each
 #   scripts/fuzz.sh -seed=1 -runs=100000     what CI runs: deterministic, 12-30 s each
-#   scripts/fuzz.sh -runs=10000000           the long run reported in docs/validation.md
+#   scripts/fuzz.sh -runs=10000000           the long run reported in docs/validation-studies.md
 # Findings are written to build-fuzz/findings/; add each as a regression test.
 set -euo pipefail
 cd "$(dirname "$0")/.."

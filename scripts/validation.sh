@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Re-runs the figures of docs/validation.md and prints them as the page shows them.
+# Re-runs the figures of docs/validation*.md and prints them as the pages show them.
 #
 #   scripts/validation.sh [--long] [--work DIR] [BUILD_DIR]
 #
@@ -7,14 +7,14 @@
 # cli/pliant, bench/filter_accuracy_bench and bench/filter_consistency_bench, and for the
 # tests step the test programs in tests/. Nothing is built here.
 #
-# The quick part (sections 1-7 and 13 of the page) took 172-241 s in three runs on the 2-core
-# reference machine under load (nice -n 19). It simulates 0.5 GB of logs into the work
-# directory (default: a new directory under /tmp, removed at the end unless --work is
-# given). --long adds the Monte Carlo studies of section 8, with 2 threads: divot 16 s,
-# known instrument 4 s, clamped 127-145 s, identify 401 s (each of its
-# 200 trials simulates and identifies a calibration), families 33 s (1.5 kHz), 8 s (100 Hz)
-# and 14 s (1.5 kHz without the hint), and the second generator's hit rate (2.5 min), its loop
-# into corrected joints (7 min) and its families (1 min).
+# The quick part (sections 1-7 of docs/validation.md, 13 of validation-unlike-defaults.md) took
+# 172-241 s in three runs on the 2-core reference machine under load (nice -n 19). It simulates
+# 0.5 GB of logs into the work directory (default: a new directory under /tmp, removed at the end
+# unless --work is given). --long adds the Monte Carlo studies of section 8 (validation-studies.md),
+# with 2 threads: divot 16 s, known instrument 4 s, clamped 127-145 s, identify 401 s (each of its
+# 200 trials simulates and identifies a calibration), families 33 s (1.5 kHz), 8 s (100 Hz) and 14 s
+# (1.5 kHz without the hint), and the second generator's hit rate (2.5 min) and loop into corrected
+# joints (7 min) of section 10 (validation-diagnosis.md) and its families (1 min) of section 12.
 #
 # The real-data score (section 3) needs clamped_cv.py (docs/real-data.md); set CLAMPED_CV
 # to its path if it is not at /work/shared/tools/clamped_cv.py. Without it that step is
@@ -28,7 +28,7 @@ while [ $# -gt 0 ]; do
   case "$1" in
     --long) long=1 ;;
     --work) work="$2"; shift ;;
-    -h|--help) sed -n '2,19p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,21p' "$0"; exit 0 ;;
     -*) echo "scripts/validation.sh: unknown option $1 — see --help" >&2; exit 2 ;;
     *) build="$1" ;;
   esac

@@ -1,5 +1,6 @@
 #!/usr/bin/python3
-"""The loop into corrected joints on the second generator's logs (docs/validation.md, section 10).
+"""The loop into corrected joints on the second generator's logs (docs/validation-diagnosis.md,
+section 10).
 
 For each hidden effect (generate.py's cases, the instrument options passed through), logs of seed
 N (to fit) and N + 1 (unseen): `pliant identify` seed N's calibration log (which holds the effect)

@@ -4,7 +4,7 @@
 pliant's own hidden-effect logs come from its simulator, which shares the
 model that `pliant diagnose` fits. This script makes logs with its own
 equations and conventions, so that the diagnosis is tested on data it was not
-built for (docs/validation.md, section 10):
+built for (docs/validation-diagnosis.md, section 10):
 
   - another instrument: compliance 0.85 x (joint 1) and 1.10 x (joint 2) the
     paper's equations (3)-(4); clearance delta 7.0 / 9.0 mrad taken up along

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Hit rate of `pliant diagnose` on the second generator's logs (docs/validation.md).
+"""Hit rate of `pliant diagnose` on the second generator's logs (docs/validation-diagnosis.md).
 
 For each case: generate the calibration and test logs, `pliant identify` the
 instrument from the calibration log, `pliant diagnose --json` the test log,

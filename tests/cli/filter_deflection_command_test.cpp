@@ -80,7 +80,7 @@ TEST(FilterDeflectionCommand, TheFilesCouplingTakesTheOtherJointsLoadOutOfTheEnc
   // 1.453 (0.297) -> 1.166 (0.030), the log without the effect 1.159 (0.027);
   // joint 2 0.193 (0.193) -> 0.042 (0.027), without 0.017 (0.017). Joint 1's
   // median error of 1.15 mrad is the filter's on this log with paper.json
-  // with or without the effect (docs/validation.md, "still short").
+  // with or without the effect (docs/validation-unlike-defaults.md, "still short").
   for (int joint : {1, 2}) {
     SCOPED_TRACE("joint " + std::to_string(joint));
     const auto clean = CoupledRowErrors(dir / "paper_clean.csv", joint);

@@ -104,7 +104,8 @@ TEST(RealFreeMotion, TheFilterLeavesAFreeArmAlone) {
 // left alone (issue 26's bounds). Measured: J = 0.217 ± 0.009 and
 // 0.165 ± 0.021 kg·m², the effort's RMS beyond the table 0.350 / 0.208 →
 // 0.049 / 0.075 N·m; filtered: median 0.0023 mm, 97.0 % within 2σ (p95 0.95
-// mm against 0.27 with the table alone: docs/validation.md section 13).
+// mm against 0.27 with the table alone: docs/validation-unlike-defaults.md
+// section 13).
 TEST(RealFreeMotion, TheArmsDynamicsIdentifiedOnItsFreeMotion) {
   const fs::path dir = FreshDirectory("real_free_motion_dynamics");
   const std::string params = (dir / "dynamics.json").string();

@@ -40,7 +40,7 @@ void ExpectHonest(const std::string& study_file, int trials, double max_coverage
 
 // 150 trials of the 100 Hz family (about 4 s). Measured on the first 150:
 // mean NEES 1.776 (band 1.693–2.332), coverage 97.8 % (joint 1) and 95.9 %
-// (joint 2); the whole study in docs/validation.md section 8.
+// (joint 2); the whole study in docs/validation-studies.md section 8.
 TEST(FamilyStudy, TheFilterIsHonestOnInstrumentsUnlikeTheDefaultsAt100Hz) {
   ExpectHonest("families_100hz.json", 150, 0.99);
 }
@@ -62,7 +62,7 @@ TEST(FamilyStudy, TheFilterIsHonestOnInstrumentsUnlikeTheDefaultsAt1500Hz) {
 // equation (2)'s and its held coverage, with and without them (about 14 s).
 // Measured: 0.866 and 89.3 % without (below equation (2), as issue 26 asks),
 // 0.656 and 94.3 % with; neither honest over the whole study yet (NEES
-// 3.53 and 2.16: docs/validation.md "still short").
+// 3.53 and 2.16: docs/validation-unlike-defaults.md "still short").
 struct OnlineFigures {
   double filter_over_equation2 = 0.0, coverage = 0.0;
 };
