@@ -215,7 +215,20 @@ void ComplianceFilter::Impl::UpdateEffortBranches(const FilterSample& sample, in
   s.mean += to_contact * gap;
   Matrix& P = s.covariance;
   const Vector& spread = branch_spread[j];
-  P.noalias() -= spread * spread.transpose();  // each branch's own: P_w
+  // A pose's branches share the covariance of the likelier before the effort
+  // (PredictPoseBranches): a held tip's, narrow. When the effort makes the
+  // free tip the likelier, the free tip's: under the held tip's, a hold the
+  // hint had made certain went on to a free pose that its encoder, gated out,
+  // could not move (experiments/third_generator). Not the other way: a
+  // contact the effort first recognises keeps the restarted tip's breadth
+  // (with the held tip's, the clamp's crossing went 2.0 → 2.9 mrad,
+  // FilterQuasiStaticContact.AClampKeepsItsTipThroughTheClearance).
+  if (has_pose_other[j] && p < 0.5) {
+    P = pose_other[j];
+  } else {
+    P.noalias() -= spread * spread.transpose();  // each branch's own: P_w
+  }
+  has_pose_other[j] = false;
   const Vector h = Vector::Unit(kTorque) + Vector::Unit(kOffset);
   ScalarUpdate(j, kEffortChannel, h, e.residual - to_contact * gap[kOffset] - s.mean[kTorque],
                e.variance, tally, false, ConsiderFor(sample, j, unloaded));
@@ -287,6 +300,11 @@ void ComplianceFilter::Impl::PredictPoseBranches(int j, const FilterSample& samp
   Reinitialise(j, sample, true);
   const FilterJointState contact = joint[j];
   joint[j] = before;
+  // A free tip bears no load (the effort's update conditions this branch on
+  // tau = 0): its shaft moves unloaded and its restart bends by none. From
+  // the last pose's load it kept that pose's bend (a released hold's 0.5 N·m,
+  // 30 mrad at the tip) and its wall.
+  joint[j].mean[kTorque] = 0.0;
   Predict(j, dt, false, false, encoder_increment, extra_compliance, 0.0);
   Reinitialise(j, sample, false);
   FilterJointState& s = joint[j];
@@ -296,8 +314,20 @@ void ComplianceFilter::Impl::PredictPoseBranches(int j, const FilterSample& samp
   // peak, a restarted one's the prior's breadth, and their moment-matched
   // Gaussian let each pose's encoder drag a held tip across the clearance
   // (docs/decisions/contact-branches.md).
-  if (held >= 0.5) s.covariance = contact.covariance;
+  // The free tip's is kept for the effort's update (UpdateEffortBranches).
+  has_pose_other[j] = held >= 0.5;
+  if (held >= 0.5) {
+    pose_other[j] = s.covariance;
+    s.covariance = contact.covariance;
+  }
   branch_gap[j] = d;
+  // A free tip restarts at the encoder whether or not the last pose held a
+  // contact: the mixing's free prior (x + (u − p)·D, UpdateEffortBranches)
+  // takes nothing of the held tip. With u the chain's share of an ended
+  // contact, a hold the hint had made certain (p = 1, so u = 1) left the
+  // next free pose's tip where the hold was, 0.2 rad from its encoder
+  // (experiments/third_generator).
+  branch_ended[j] = 0.0;
   branch_spread[j] = std::sqrt(held * (1.0 - held)) * d;
   branched[j] = true;
   s.covariance.noalias() += branch_spread[j] * branch_spread[j].transpose();

@@ -240,6 +240,7 @@ struct ComplianceFilter::Impl {
     branch_spread[j] -= last_gain * h.dot(branch_spread[j]);
   }
   void ClearBranches(int j) {
+    has_pose_other[j] = false;
     if (!branched[j]) return;
     branched[j] = false;
     branch_gap[j].setZero();
@@ -347,8 +348,8 @@ struct ComplianceFilter::Impl {
   // (each branch's own covariance is P_w) instead of adding it once more.
   Vector branch_spread[2];
   bool branched[2] = {true, true};  // D or E may be non-zero (false: both are 0, nothing to carry)
-  double branch_last[2] = {0.0, 0.0}, branch_continuing[2] = {0.0, 0.0};
-  double branch_ended[2] = {0.0, 0.0};
+  double branch_last[2] = {}, branch_continuing[2] = {}, branch_ended[2] = {};
+  filter_internal::Matrix pose_other[2]; bool has_pose_other[2] = {};  // a held pose's free tip's P
   Vector last_gain;  // ScalarUpdate's last gain (0: rejected)
   // Given a contact, the chance that it holds the tip (its load follows the
   // bend) rather than moving with the arm: the pair windows' evidence
@@ -392,9 +393,8 @@ struct ComplianceFilter::Impl {
   // (21 ms at 1.5 kHz).
   static constexpr int kFullCheckPeriod = 32;
   int check_phase = 0;  // block 0 is tested at phase 0, block 1 at phase 16
-  int window_count = 0;
+  int window_count = 0, window_dof_sum = 0;
   double window_sum = 0.0;
-  int window_dof_sum = 0;
 };
 
 }  // namespace pliant::estimation
