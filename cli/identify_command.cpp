@@ -125,8 +125,7 @@ Command AddIdentifyCommand(CLI::App& app) {
   sub->add_option("--method", options->method,
                   "paper: the paper's procedure; smoother: one Ceres problem with covariance; "
                   "quasi_static: clamp by clamp with the held friction (auto: quasi_static when "
-                  "every log is '# timing: quasi-static' or one records a single joint, else "
-                  "smoother)")
+                  "a log records a single joint, else smoother)")
       ->check(CLI::IsMember({"auto", "paper", "smoother", "quasi_static"}))
       ->capture_default_str();
   sub->add_option("--model", options->law, "Compliance law K(L)")

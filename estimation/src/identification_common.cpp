@@ -1,6 +1,9 @@
 #include "identification_common.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <map>
 
 #include <Eigen/Eigenvalues>
 
@@ -31,6 +34,23 @@ double CorrelationCondition(const Eigen::MatrixXd& covariance) {
   const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(correlation);
   const double smallest = std::max(eigen.eigenvalues().minCoeff(), 1e-300);
   return eigen.eigenvalues().maxCoeff() / smallest;
+}
+
+std::set<int> ClampsThatLoad(const IdentificationData& data, int j) {
+  std::map<int, std::pair<double, double>> range;  // segment -> (lowest, highest) effort
+  for (const auto& s : data.samples) {
+    if (!s.tip_fixed || !std::isfinite(s.effort_nm[j])) continue;
+    auto [it, added] = range.try_emplace(s.segment, s.effort_nm[j], s.effort_nm[j]);
+    it->second.first = std::min(it->second.first, s.effort_nm[j]);
+    it->second.second = std::max(it->second.second, s.effort_nm[j]);
+  }
+  double widest = 0.0;
+  for (const auto& [segment, r] : range) widest = std::max(widest, r.second - r.first);
+  std::set<int> out;
+  for (const auto& [segment, r] : range) {
+    if (r.second - r.first >= 0.2 * widest) out.insert(segment);
+  }
+  return out;
 }
 
 double NowSeconds() {

@@ -2,6 +2,7 @@
 // Small pieces shared by the paper's procedure and the joint smoother.
 
 #include <array>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -35,6 +36,14 @@ struct UndeterminedParameters {
   std::array<bool, 2> bias{{false, false}}, backlash{{false, false}};
   std::array<std::array<bool, 2>, 2> depth_harmonic{};
 };
+/// The tip_fixed segments that load joint j: those whose joint-j effort spans
+/// at least a fifth of the widest clamp's span. A log that records both joints
+/// in every clamp holds, for each joint, clamps pushed along the other joint:
+/// their rows sit at one unknown load inside the joint's clearance and
+/// friction band, so they say nothing of K and pull the fit's clearance and
+/// friction to explain a load that is not there.
+std::set<int> ClampsThatLoad(const IdentificationData& data, int j);
+
 UndeterminedParameters FindUndetermined(const IdentificationData& data,
                                         const models::ModelParameters& bias,
                                         const PaperProcedureOptions& options);

@@ -27,8 +27,9 @@ bool Recorded(const IdentificationData& data, int joint) {
 
 std::vector<const IdentificationSample*> ClampedSamples(const IdentificationData& data, int j) {
   std::vector<const IdentificationSample*> out;
+  const std::set<int> loaded = detail::ClampsThatLoad(data, j);
   for (const auto& s : data.samples) {
-    if (s.tip_fixed && std::isfinite(s.angle_rad[j]) && std::isfinite(s.effort_nm[j]) &&
+    if (s.tip_fixed && loaded.count(s.segment) && std::isfinite(s.angle_rad[j]) && std::isfinite(s.effort_nm[j]) &&
         std::isfinite(s.insertion_depth_m))
       out.push_back(&s);
   }
@@ -68,8 +69,13 @@ void Covariance(ceres::Problem* problem, const std::vector<double*>& blocks,
   const double dof = std::max(1.0, double(r.size() - jacobian.cols()));
   Eigen::VectorXd unscale(6);
   unscale << fit->law_scale[0], fit->law_scale[1], fit->law_scale[2], fit->law_scale[3], 1.0, 1.0;
-  fit->sandwich = unscale.asDiagonal() * s.clustered * unscale.asDiagonal();
   fit->white = unscale.asDiagonal() * (s.residual_square_sum / dof * s.model) * unscale.asDiagonal();
+  // Never below the white noise's s²·H⁻¹, as the smoother's: with a tip per
+  // clamp profiled out, a few clamps' scores can agree by chance, and the
+  // sandwich alone put δ's σ at a tenth of the white σ on a generator whose
+  // take-up the held friction does not describe.
+  fit->sandwich =
+      detail::NotBelow(unscale.asDiagonal() * s.clustered * unscale.asDiagonal(), fit->white);
   // Residuals were scaled by 1/kAngleSdRad: back to radians.
   fit->rms_rad = std::sqrt(r.squaredNorm() / double(r.size())) * kAngleSdRad;
 }

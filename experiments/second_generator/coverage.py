@@ -14,7 +14,8 @@ Families:
   own        pliant's simulated paper protocol (bench/make_identify_logs.sh
              LOGS): sweep_SEED.csv + beam_SEED.csv; truth data/paper.json
 
-Usage: coverage.py PLIANT FAMILY FIRST LAST [--logs DIR] [--json OUT]
+Usage: coverage.py PLIANT FAMILY FIRST LAST [--logs DIR] [--json OUT] [--method M]
+(--method: pliant identify's, default auto)
 """
 import argparse
 import json
@@ -68,13 +69,14 @@ def main():
     parser.add_argument("--logs", default="/tmp/pliant_identify")
     parser.add_argument("--work", default="/tmp/pliant_coverage")
     parser.add_argument("--json")
+    parser.add_argument("--method", default="auto")
     a = parser.parse_args()
     repo = os.path.dirname(os.path.dirname(HERE))
     rows = []
     for seed in range(a.first, a.last + 1):
         files = logs(a.family, seed, os.path.join(a.work, a.family), a.logs)
         out = os.path.join(a.work, "%s_%d.json" % (a.family, seed))
-        subprocess.run([a.pliant, "identify", *files, "-o", out], check=True,
+        subprocess.run([a.pliant, "identify", *files, "-o", out, "--method", a.method], check=True,
                        capture_output=True)
         row = {"seed": seed}
         for depth in DEPTHS:

@@ -188,8 +188,7 @@ def identify(logs, output=None, method="auto", law="inverse_cubic", prior=None,
     torque (N·m) from log files, with the covariance (docs/identification.md).
 
     logs: a path or a list of paths. method: 'auto' (as the command: 'quasi_static'
-    when every log is quasi-static or one records a single joint, as the real JHU
-    files do; else 'smoother'), 'smoother', 'quasi_static' (clamp by clamp with the
+    when a log records a single joint, as the real JHU files do; else 'smoother'), 'smoother', 'quasi_static' (clamp by clamp with the
     held friction; held_friction=False fits the paper's form) or 'paper'. law:
     'inverse_cubic', 'direct_cubic' or 'beam_series'. prior: Parameters (or a
     path) the priors are centred on; default the paper's. effects: catalogue

@@ -85,6 +85,32 @@ TEST(QuasiStaticIdentification, HeldOutDepthSlopesFallInsideThe95PercentInterval
   EXPECT_GE(inside, 24) << inside << " of " << total;  // ≥ 86 % (95 % ± 2 binomial sd)
 }
 
+// A log that records both joints in every clamp: joint 1's clamps, pushed
+// along joint 1, also hold joint 2 at one load inside its friction band while
+// its encoder wanders (the controller, the coupling). Those rows say nothing
+// of joint 2's K and must not enter its fit: joint 2's law, clearance and σ are
+// those of the log without them.
+TEST(QuasiStaticIdentification, ClampsThatDoNotLoadAJointStayOutOfItsFit) {
+  const auto alone = RunQuasiStaticIdentification(RealData(-1), PaperPrior());
+  IdentificationData both = RealData(-1);
+  int k = 0, added = 0;
+  for (auto& s : both.samples) {
+    if (!s.tip_fixed || std::isfinite(s.angle_rad[1])) continue;
+    s.angle_rad[1] = 0.1 + 2e-3 * std::cos(0.3 * k);
+    s.effort_nm[1] = -0.2 + 0.03 * std::sin(0.7 * k++);
+    ++added;
+  }
+  ASSERT_GT(added, 100);
+  const auto result = RunQuasiStaticIdentification(both, PaperPrior());
+  const auto& law = result.parameters.joints[1].compliance.cubic.coefficients;
+  for (int i = 0; i < 4; ++i)
+    EXPECT_DOUBLE_EQ(law[i], alone.parameters.joints[1].compliance.cubic.coefficients[i]) << i;
+  EXPECT_DOUBLE_EQ(result.parameters.joints[1].backlash_rad,
+                   alone.parameters.joints[1].backlash_rad);
+  EXPECT_DOUBLE_EQ(result.angle_rms_rad[1], alone.angle_rms_rad[1]);
+  EXPECT_TRUE(result.parameters.covariance->matrix.isApprox(alone.parameters.covariance->matrix));
+}
+
 TEST(QuasiStaticIdentification, AnUnrecordedJointKeepsItsPriorAndSaysSo) {
   const auto prior = PaperPrior();
   const auto result = RunQuasiStaticIdentification(RealData(-1, false), prior);

@@ -23,20 +23,17 @@ struct IdentifyLogsOptions {
   bool skip_bad_rows = false;        ///< drop rows with NaN/Inf/empty required values
 };
 
-/// What `auto` reads of the logs: whether each is a quasi-static log (one
-/// row per pose, `# timing: quasi-static`) and which record one joint only.
+/// What `auto` reads of the logs: which record one joint only.
 struct LogKinds {
-  bool all_quasi_static = true;
   std::vector<std::string> single_joint;  ///< paths of the logs that record one joint
 
   void Add(const io::Log& log, const std::string& path);
 };
 
 /// The method for these logs: `requested` unless it is "auto", which is the
-/// clamp-by-clamp quasi-static fit when every log is quasi-static or one of
-/// them records a single joint (the joint smoother needs both joints of every
-/// log, and reads the dynamics a quasi-static log does not have), else the
-/// joint smoother. The joint smoother asked for on a log of one joint is
+/// clamp-by-clamp quasi-static fit when one of the logs records a single joint
+/// (the joint smoother needs both joints of every log), else the joint
+/// smoother, on poses (`# timing: quasi-static`) as on samples in time. The joint smoother asked for on a log of one joint is
 /// io::InputError.
 std::string ResolveIdentifyMethod(const std::string& requested, const LogKinds& kinds,
                                   const std::vector<std::string>& paths);
