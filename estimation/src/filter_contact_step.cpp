@@ -265,6 +265,7 @@ void ComplianceFilter::Impl::PredictBranchGap(int j, double encoder_increment, d
     x[kBacklash] = t.f_backlash_torque * x[kTorque] + t.f_backlash_backlash * x[kBacklash] +
                    t.f_backlash_clearance * x[kClearance];
     x[kTorque] = t.f_torque_torque * x[kTorque] + t.f_torque_scale * x[kScale];
+    x[kOffset] *= t.f_offset_offset;
   }
   // (Branches are kept only while the contact is inferred.)
   Vector& gap = branch_gap[j];

@@ -58,23 +58,27 @@ struct OutputColumns {
   bool recorded[2] = {true, true};  // an unrecorded joint's columns are empty
 };
 
-// A log file's first rows: their times (the spacing, MedianRowSpacing) and
-// efforts (the noise, EffortNoiseFromSamples). Empty for standard input,
-// which cannot be read twice.
+// A log file's first rows: their times (the spacing, MedianRowSpacing),
+// encoders and efforts (the noise: EffortNoiseFromSamples over the first
+// kNoiseRows, its colour over the still stretches of all). Empty for standard
+// input, which cannot be read twice.
 struct LogPrefix {
-  std::vector<double> times_s, effort_nm[2];
+  std::vector<double> times_s, encoder_rad[2], effort_nm[2];
 };
-constexpr std::size_t kNoiseRows = 4096;  // the rows whose efforts give the noise
+constexpr std::size_t kNoiseRows = 4096;    // the rows whose efforts give the white noise
+constexpr std::size_t kColourRows = 65536;  // the rows whose still stretches give its colour
 
 LogPrefix ReadPrefix(const std::string& path, const io::LogReaderOptions& read_options) {
   LogPrefix prefix;
   if (path == "-") return prefix;
   io::LogReader reader(path, read_options);
   const io::StandardColumns in(reader.header());
-  while (prefix.times_s.size() < kNoiseRows) {
+  while (prefix.times_s.size() < kColourRows) {
     const double* row = reader.Next();
     if (row == nullptr) break;
     prefix.times_s.push_back(row[in.t]);
+    prefix.encoder_rad[0].push_back(Optional(row, in.q1));
+    prefix.encoder_rad[1].push_back(Optional(row, in.q2));
     prefix.effort_nm[0].push_back(row[in.tau1]);
     prefix.effort_nm[1].push_back(row[in.tau2]);
   }
@@ -97,7 +101,14 @@ FilterOptions UsedOptions(const models::ModelParameters& parameters, const Filte
     summary->notes.push_back("the parameters were fitted on this log (" + fitted->file +
                              "): what it says of their errors is in-sample");
   }
-  return EffortNoiseForLog(used, prefix.effort_nm, &summary->notes, &summary->advice);
+  std::vector<double> first[2];
+  for (int j = 0; j < 2; ++j) {
+    const auto& e = prefix.effort_nm[j];
+    first[j].assign(e.begin(), e.begin() + std::ptrdiff_t(std::min(e.size(), kNoiseRows)));
+  }
+  used = EffortNoiseForLog(used, first, &summary->notes, &summary->advice);
+  return EffortColourForLog(used, prefix.times_s, prefix.encoder_rad, prefix.effort_nm,
+                            &summary->notes, &summary->advice);
 }
 
 std::string Note(const std::string& metadata_note, const LogFilterSummary& summary) {
@@ -325,31 +336,6 @@ FilterOptions OptionsForLog(FilterOptions options, const io::LogHeader& header,
                        n + "_sd left empty");
     }
   }
-  return options;
-}
-
-FilterOptions EffortNoiseForLog(FilterOptions options, const std::vector<double> effort_nm[2],
-                                std::vector<std::string>* notes, std::vector<std::string>* advice) {
-  if (options.quasi_static) return options;
-  double estimate = 0.0;
-  for (int j = 0; j < 2; ++j) {
-    const double sd = options.joint_recorded[j] ? EffortNoiseFromSamples(effort_nm[j]) : 0.0;
-    if (std::isfinite(sd)) estimate = std::max(estimate, sd);
-  }
-  if (!(estimate > options.effort_noise_nm)) return options;
-  std::ostringstream note;
-  note << std::setprecision(3) << "the efforts hold " << estimate
-       << " N·m of white noise (their second differences over the log's first "
-       << std::min(effort_nm[0].size(), kNoiseRows) << " rows), above the assumed "
-       << options.effort_noise_nm << " N·m: ";
-  if (!options.effort_noise_from_log) {
-    note << "--effort-noise-from-log uses it (docs/decisions/effort-noise.md)";
-    advice->push_back(note.str());
-    return options;
-  }
-  note << "used";
-  notes->push_back(note.str());
-  options.effort_noise_nm = estimate;
   return options;
 }
 

@@ -82,6 +82,10 @@ bool FilterOptions::IsValid(std::string* error) const {
                          "offset in N·m, e.g. 0.02");
     }
   }
+  if (!(effort_offset_correlation_s.minCoeff() > 0.0)) {
+    return Fail(error, "FilterOptions::effort_offset_correlation_s must be > 0 — seconds, "
+                       "infinity for a constant offset");
+  }
   if (!(std::isfinite(effort_offset_rate_nm) && effort_offset_rate_nm >= 0.0)) {
     return Fail(error, "FilterOptions::effort_offset_rate_nm must be finite and >= 0 — N·m/√s, "
                        "or 0 for a constant offset");

@@ -114,6 +114,16 @@ void ComplianceFilter::Impl::Predict(int j, double dt, bool tip_fixed, bool seat
   q[kScale] = o.compliance_scale_rate * o.compliance_scale_rate * dt;
   q[kClearance] = 0.0;
   q[kOffset] = o.effort_offset_rate_nm * o.effort_offset_rate_nm * dt;
+  t.f_offset_offset = 1.0;
+  if (std::isfinite(o.effort_offset_correlation_s[j])) {  // Gauss–Markov: σ_β stationary
+    const double rho = std::exp(-dt / o.effort_offset_correlation_s[j]);
+    const double sd = uncertainty[j].effort_offset_sd_nm;
+    s.mean[kOffset] *= rho;
+    P.row(kOffset) *= rho;
+    P.col(kOffset) *= rho;
+    q[kOffset] += sd * sd * (1.0 - rho * rho);
+    t.f_offset_offset = rho;
+  }
   // The two predictions' means differ by Δq in the tip and the bend's load in
   // tau: the mixture's spread (its diagonal: the process noise stays diagonal).
   const double spread = held * (1.0 - held);
@@ -168,6 +178,7 @@ void ComplianceFilter::Impl::Release(int j, double dt, double encoder_increment)
   t.f_torque_torque = t.f_torque_scale = 0.0;
   t.f_backlash_torque = t.f_backlash_clearance = 0.0;
   t.f_backlash_backlash = keep;
+  t.f_offset_offset = 1.0;
   t.process_noise = q;
   t.seating_bound_weight = 1.0;
   t.predicted = true;

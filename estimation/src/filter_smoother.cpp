@@ -8,10 +8,10 @@ namespace pliant::estimation {
 namespace {
 
 constexpr int kTorque = kStateTorque, kBacklash = kStateBacklash, kScale = kStateScale,
-              kClearance = kStateClearance;
+              kClearance = kStateClearance, kOffset = kStateEffortOffset;
 using Matrix = FilterStateMatrix;
 
-// F·M for the transition's F: the identity but for tau's row (∂tau+/∂tau,
+// F·M for the transition's F: the identity but for β's diagonal (ρ) and tau's row (∂tau+/∂tau,
 // ∂tau+/∂s) and b's (∂b+/∂tau, ∂b+/∂b, ∂b+/∂e), so only those two rows change.
 Matrix TransitionTimes(const FilterTransition& t, const Matrix& m) {
   Matrix out = m;
@@ -19,6 +19,7 @@ Matrix TransitionTimes(const FilterTransition& t, const Matrix& m) {
   out.row(kBacklash) = t.f_backlash_torque * m.row(kTorque) +
                        t.f_backlash_backlash * m.row(kBacklash) +
                        t.f_backlash_clearance * m.row(kClearance);
+  out.row(kOffset) = t.f_offset_offset * m.row(kOffset);
   return out;
 }
 

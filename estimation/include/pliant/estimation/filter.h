@@ -159,6 +159,7 @@ struct FilterTransition {
   double f_backlash_torque = 0.0;   ///< ∂b+/∂tau
   double f_backlash_backlash = 1.0; ///< ∂b+/∂b
   double f_backlash_clearance = 0.0;  ///< ∂b+/∂e
+  double f_offset_offset = 1.0;     ///< ∂β+/∂β: exp(−dt/τβ) (effort_offset_correlation_s)
   FilterStateVector process_noise = FilterStateVector::Zero();  ///< diag Q
   /// < 1: the tip was seated and SeatingBound(P, this) came before F·P·Fᵀ + Q.
   double seating_bound_weight = 1.0;

@@ -71,6 +71,18 @@ FilterOptions OptionsForLog(FilterOptions options, const io::LogHeader& header,
 FilterOptions EffortNoiseForLog(FilterOptions options, const std::vector<double> effort_nm[2],
                                 std::vector<std::string>* notes, std::vector<std::string>* advice);
 
+/// On a log of samples in time: each recorded joint's EffortNoiseColourFromStill
+/// over the log's StillStretches (times_s, encoders and efforts of the log's
+/// first rows). Where the effort's noise is correlated over more than a
+/// sample and β is otherwise off (σ_β 0, no tare, no fused reference),
+/// with FilterOptions::effort_colour_from_log β carries it (σ_β, τβ of that
+/// joint) and one sentence in `notes` says so; else the sentence goes to
+/// `advice`. docs/decisions/coloured-effort-noise.md.
+FilterOptions EffortColourForLog(FilterOptions options, const std::vector<double>& times_s,
+                                 const std::vector<double> encoder_rad[2],
+                                 const std::vector<double> effort_nm[2],
+                                 std::vector<std::string>* notes, std::vector<std::string>* advice);
+
 /// Online — the log has no tip_fixed column, its rows are samples in time and
 /// contact is inferred — with neither joint_inertia nor joint_friction in the
 /// parameters: the sentence that says the filter learns the arm's torque from

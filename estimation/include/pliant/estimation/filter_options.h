@@ -206,6 +206,21 @@ struct FilterOptions {
   /// on with a reference, or to study its doubt.
   Eigen::Vector2d effort_offset_sd_nm{0.0, 0.0};
   double effort_offset_rate_nm = 0.0;     ///< σ_β̇, N·m/√s (0: a constant offset)
+  /// τβ per joint (s): finite makes β a first-order Gauss–Markov process
+  /// (AR(1) at each step, ρ = exp(−dt/τβ)) that keeps σ_β as its stationary
+  /// σ: an effort noise correlated over τβ (a current loop's filter, a drive's
+  /// ripple), which a white noise model averages down over a hold as if each
+  /// sample were new. As a consider state β's mean stays 0 and its doubt flows
+  /// into the held tip. Infinity (the default): a constant offset. On a log,
+  /// effort_colour_from_log sets it with σ_β where the log shows such noise.
+  /// docs/decisions/coloured-effort-noise.md.
+  Eigen::Vector2d effort_offset_correlation_s{std::numeric_limits<double>::infinity(),
+                                              std::numeric_limits<double>::infinity()};
+  /// On a log (FilterLog): where the efforts over the log's still stretches
+  /// hold noise correlated over more than a sample (EffortNoiseColourFromStill)
+  /// and β is otherwise off (σ_β 0, no tare, no fused reference), β carries
+  /// it: σ_β and τβ per joint from the log, said in the summary's notes.
+  bool effort_colour_from_log = true;
   /// β's mean stays within ±this × σ_β. Why: a held tip tells β from the load
   /// only through the deflection; in a clamped-beam Monte Carlo trial, while
   /// β was still learned from the encoder, β took a rising load, 0.18 N·m
