@@ -29,6 +29,8 @@ const std::pair<const char*, Field> kFields[] = {
     {"compliance_scale_sd", &FilterOptions::compliance_scale_sd},
     {"backlash_sd_rad", &FilterOptions::backlash_sd_rad},
     {"effort_offset_sd_nm", &FilterOptions::effort_offset_sd_nm},
+    {"effort_offset_correlation_s", &FilterOptions::effort_offset_correlation_s},
+    {"effort_colour_from_log", &FilterOptions::effort_colour_from_log},
     {"unloaded_start_s", &FilterOptions::unloaded_start_s},
     {"motor_inertia_kg_m2", &FilterOptions::motor_inertia_kg_m2},
     {"shaft_damping_nm_s_per_rad", &FilterOptions::shaft_damping_nm_s_per_rad},

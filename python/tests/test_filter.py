@@ -52,6 +52,9 @@ def test_the_summary_says_when_the_file_does_not_fit_the_log(tmp_path):
     (["--no-contact-inference"], {"infer_contact": False}),
     (["--fixed-contact-rates"], {"learn_contact_rates": False}),
     (["--effort-noise-from-log"], {"effort_noise_from_log": True}),
+    (["--effort-offset-sd", "0.01", "--effort-offset-correlation", "0.02"],
+     {"effort_offset_sd_nm": 0.01, "effort_offset_correlation_s": 0.02}),
+    (["--no-effort-colour"], {"effort_colour_from_log": False}),
 ])
 def test_options_are_the_commands(tmp_path, flags, options):
     run_cli("filter", "--params", PARAMS, LOG, "-o", tmp_path / "cli.csv", *flags)
