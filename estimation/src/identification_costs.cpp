@@ -96,26 +96,23 @@ struct EffortResidual {
 
 struct HeldFrictionAngleResidual {
   models::HeldFrictionEffect friction;
+  AngleModel model;
   IdentificationSample sample;
   int joint;
-  models::ComplianceForm form;
   std::array<double, 4> law_scale;
   double bias_nm, presliding_travel_rad, inverse_sd;
 
   template <typename T>
   bool operator()(const T* tip, const T* scaled_law, const T* held, const T* delta,
-                  T* residual) const {
+                  const T* log_width, T* residual) const {
     T law[4];
     for (int i = 0; i < 4; ++i) law[i] = scaled_law[i] * law_scale[i];
     models::JointState<T> state;
     state.travel_since_reversal_rad = sample.travel_since_reversal_rad.cast<T>();
     const T p[3] = {held[0], held[0], T(presliding_travel_rad)};
     const T load = T(sample.effort_nm[joint] - bias_nm) - friction(p, state)[joint];
-    const T depth(sample.insertion_depth_m);
-    const T side = load > 0.0 ? T(1.0) : (load < 0.0 ? T(-1.0) : T(0.0));
-    residual[0] = (T(sample.angle_rad[joint]) - tip[0] -
-                   models::EvaluateCompliance(form, law, depth) * load - delta[0] * side) *
-                  inverse_sd;
+    const T deflection = model(load, law, delta[0], log_width[0], T(sample.insertion_depth_m));
+    residual[0] = (T(sample.angle_rad[joint]) - tip[0] - deflection) * inverse_sd;
     return true;
   }
 };
@@ -127,9 +124,10 @@ ceres::CostFunction* NewHeldFrictionAngleResidual(const IdentificationSample& sa
                                                   const std::array<double, 4>& law_scale,
                                                   double bias_nm, double presliding_travel_rad,
                                                   double sd_rad) {
-  return new ceres::AutoDiffCostFunction<HeldFrictionAngleResidual, 1, 1, 4, 1, 1>(
-      new HeldFrictionAngleResidual{{}, sample, joint, form, law_scale, bias_nm,
-                                    presliding_travel_rad, 1.0 / sd_rad});
+  return new ceres::AutoDiffCostFunction<HeldFrictionAngleResidual, 1, 1, 4, 1, 1, 1>(
+      new HeldFrictionAngleResidual{
+          {}, {WideRangeCompliance({form, form}), models::BacklashDeadZoneEffect(), joint}, sample,
+          joint, law_scale, bias_nm, presliding_travel_rad, 1.0 / sd_rad});
 }
 
 ceres::CostFunction* NewEffortResidual(const IdentificationSample& sample, int joint,

@@ -40,9 +40,11 @@ double Deflection(int joint, const std::array<models::ComplianceForm, 2>& law_fo
 
 /// The quasi-static clamped-beam angle with the held-friction effect
 /// (models/effects/held_friction.h), for one recorded joint:
-///   (q_j − tip − K_j(L)·tau_e − δ_j·sgn(tau_e)) / sd,
-///   tau_e = tau_meas_j − tau0_j − held_friction_j(travel; F_j, λ).
-/// Parameter blocks: tip (1), law / law_scale (4), F_j (1), δ_j (1). λ is held.
+///   (q_j − tip − K_j(L)·tau_e − δ_j·S(tau_e / w_j)) / sd,
+///   tau_e = tau_meas_j − tau0_j − held_friction_j(travel; F_j, λ),
+/// K and the dead zone δ·S the compliance and backlash effects', as the
+/// smoother's. Parameter blocks: tip (1), law / law_scale (4), F_j (1), δ_j
+/// (1), log w_j (1, N·m). λ is held.
 ceres::CostFunction* NewHeldFrictionAngleResidual(const IdentificationSample& sample, int joint,
                                                   models::ComplianceForm form,
                                                   const std::array<double, 4>& law_scale,

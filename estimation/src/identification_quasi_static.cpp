@@ -12,12 +12,16 @@
 #include "clustered_sandwich.h"
 #include "identification_common.h"
 #include "identification_costs.h"
+#include "joint_smoother_width.h"
 #include "quasi_static_report.h"
 
 namespace pliant::estimation {
 namespace {
 
 constexpr double kAngleSdRad = 1e-3;  // scales the cost only; σ come from the sandwich
+// The take-up width's floor: one effort sample's resolution on a Classic PSM
+// (its noise, reference/dvrk.md); below it the dead zone is a step.
+constexpr double kWidthFloorNm = 0.01;
 
 bool Recorded(const IdentificationData& data, int joint) {
   return std::any_of(data.samples.begin(), data.samples.end(), [&](const auto& s) {
@@ -46,63 +50,76 @@ int DistinctDepths(const std::vector<const IdentificationSample*>& samples) {
 struct JointFit {
   std::vector<double> tips;
   std::array<double, 4> scaled_law{}, law_scale{};
-  double held_friction_nm = 0.0, backlash_rad = 0.0;
+  double held_friction_nm = 0.0, backlash_rad = 0.0, log_width = 0.0;
+  bool width_above_floor = false;
   Eigen::MatrixXd sandwich, white;  // over (law ×4, F, δ), the law unscaled
-  double rms_rad = 0.0;
+  double rms_rad = 0.0, width_slope = 0.0;
   int clusters = 0;
+  ceres::Solver::Summary solver;
   std::string summary;
 };
 
 // Clustered sandwich (clustered_sandwich.h): the rows of one clamp share
 // their errors (unknown start, model error), so the score of each clamp is one
-// draw, not each row's.
+// draw, not each row's. `globals`: the trailing columns (law ×4, F, δ, and
+// log w when the profile left it above its floor: its doubt is carried into
+// the others', then dropped).
 void Covariance(ceres::Problem* problem, const std::vector<double*>& blocks,
-                const std::vector<int>& cluster_of_row, JointFit* fit) {
+                const std::vector<int>& cluster_of_row, int globals, JointFit* fit) {
   Eigen::SparseMatrix<double> jacobian;
   Eigen::VectorXd r;
   detail::EvaluateJacobian(problem, blocks, {}, &jacobian, &r);
-  // The global numbers are the last six columns: law (scaled) ×4, F, δ.
-  std::vector<Eigen::Index> globals;
-  for (Eigen::Index c = jacobian.cols() - 6; c < jacobian.cols(); ++c) globals.push_back(c);
-  const detail::SandwichCovariance s =
-      detail::ClusteredSandwich(jacobian, r, cluster_of_row, globals);
+  std::vector<Eigen::Index> wanted;
+  for (Eigen::Index c = jacobian.cols() - globals; c < jacobian.cols(); ++c) wanted.push_back(c);
+  const detail::SandwichCovariance s = detail::ClusteredSandwich(jacobian, r, cluster_of_row, wanted);
   const double dof = std::max(1.0, double(r.size() - jacobian.cols()));
   Eigen::VectorXd unscale(6);
   unscale << fit->law_scale[0], fit->law_scale[1], fit->law_scale[2], fit->law_scale[3], 1.0, 1.0;
-  fit->white = unscale.asDiagonal() * (s.residual_square_sum / dof * s.model) * unscale.asDiagonal();
+  const Eigen::MatrixXd clustered = s.clustered.topLeftCorner(6, 6);
+  const Eigen::MatrixXd model = s.model.topLeftCorner(6, 6);
+  fit->white = unscale.asDiagonal() * (s.residual_square_sum / dof * model) * unscale.asDiagonal();
   // Never below the white noise's s²·H⁻¹, as the smoother's: with a tip per
   // clamp profiled out, a few clamps' scores can agree by chance, and the
   // sandwich alone put δ's σ at a tenth of the white σ on a generator whose
   // take-up the held friction does not describe.
   fit->sandwich =
-      detail::NotBelow(unscale.asDiagonal() * s.clustered * unscale.asDiagonal(), fit->white);
+      detail::NotBelow(unscale.asDiagonal() * clustered * unscale.asDiagonal(), fit->white);
   // Residuals were scaled by 1/kAngleSdRad: back to radians.
   fit->rms_rad = std::sqrt(r.squaredNorm() / double(r.size())) * kAngleSdRad;
 }
 
-JointFit FitJoint(const std::vector<const IdentificationSample*>& samples, int j,
-                  const models::JointParameters& joint, const QuasiStaticOptions& options) {
-  if (joint.compliance.form == models::ComplianceForm::kBeamSeries)
-    throw std::invalid_argument("the quasi-static identification fits a cubic law "
-                                "(--model inverse_cubic or direct_cubic)");
+// One solve at a held take-up width, started from `start` (or from the prior
+// and each clamp's mean angle); with `final`, w is freed for the covariance
+// where it is above its floor.
+JointFit SolveJoint(const std::vector<const IdentificationSample*>& samples, int j,
+                    const models::JointParameters& joint, const QuasiStaticOptions& options,
+                    double log_width, const JointFit* start, bool final,
+                    bool hold_globals = false) {
   JointFit fit;
   std::map<int, int> cluster;  // segment -> index
   for (const auto* s : samples) cluster.emplace(s->segment, int(cluster.size()));
+  if (start != nullptr) {
+    fit = *start;
+  } else {
+    for (int i = 0; i < 4; ++i) {
+      const double c = joint.compliance.cubic.coefficients[i];
+      fit.law_scale[i] = c != 0.0 ? std::abs(c) : 1.0;
+      fit.scaled_law[i] = c / fit.law_scale[i];
+    }
+    fit.held_friction_nm = options.held_friction ? 0.05 : 0.0;
+    fit.backlash_rad = 1e-3;
+  }
+  if (fit.tips.size() != cluster.size()) {  // new clamps: each starts at its mean angle
+    fit.tips.assign(cluster.size(), 0.0);
+    std::vector<double> n(cluster.size(), 0.0);
+    for (const auto* s : samples) {  // tips: the mean angle of each clamp
+      fit.tips[cluster[s->segment]] += s->angle_rad[j];
+      n[cluster[s->segment]] += 1.0;
+    }
+    for (std::size_t c = 0; c < n.size(); ++c) fit.tips[c] /= n[c];
+  }
   fit.clusters = int(cluster.size());
-  fit.tips.assign(cluster.size(), 0.0);
-  for (int i = 0; i < 4; ++i) {
-    const double c = joint.compliance.cubic.coefficients[i];
-    fit.law_scale[i] = c != 0.0 ? std::abs(c) : 1.0;
-    fit.scaled_law[i] = c / fit.law_scale[i];
-  }
-  fit.held_friction_nm = options.held_friction ? 0.05 : 0.0;
-  fit.backlash_rad = 1e-3;
-  std::vector<double> n(cluster.size(), 0.0);
-  for (const auto* s : samples) {  // tips: the mean angle of each clamp
-    fit.tips[cluster[s->segment]] += s->angle_rad[j];
-    n[cluster[s->segment]] += 1.0;
-  }
-  for (std::size_t c = 0; c < n.size(); ++c) fit.tips[c] /= n[c];
+  fit.log_width = log_width;
 
   ceres::Problem problem;
   std::vector<int> cluster_of_row;
@@ -112,7 +129,7 @@ JointFit FitJoint(const std::vector<const IdentificationSample*>& samples, int j
         detail::NewHeldFrictionAngleResidual(*s, j, joint.compliance.form, fit.law_scale, bias,
                                              options.presliding_travel_rad, kAngleSdRad),
         nullptr, &fit.tips[cluster[s->segment]], fit.scaled_law.data(), &fit.held_friction_nm,
-        &fit.backlash_rad);
+        &fit.backlash_rad, &fit.log_width);
     cluster_of_row.push_back(cluster[s->segment]);
   }
   problem.SetParameterLowerBound(&fit.held_friction_nm, 0, 0.0);
@@ -120,23 +137,132 @@ JointFit FitJoint(const std::vector<const IdentificationSample*>& samples, int j
   problem.SetParameterLowerBound(&fit.backlash_rad, 0, 0.0);  // a clearance is never negative
   problem.SetParameterUpperBound(&fit.backlash_rad, 0, 0.05);
   if (!options.held_friction) problem.SetParameterBlockConstant(&fit.held_friction_nm);
+  problem.SetParameterBlockConstant(&fit.log_width);
+  if (hold_globals) {  // only the clamps' tips: the fit predicting clamps it has not seen
+    for (double* block : {fit.scaled_law.data(), &fit.held_friction_nm, &fit.backlash_rad})
+      problem.SetParameterBlockConstant(block);
+  }
   ceres::Solver::Options solver;
   solver.linear_solver_type = ceres::DENSE_QR;
   solver.max_num_iterations = 200;
-  ceres::Solver::Summary summary;
-  ceres::Solve(solver, &problem, &summary);
-  fit.summary = "joint " + std::to_string(j + 1) + ": " + summary.BriefReport();
+  ceres::Solve(solver, &problem, &fit.solver);
+  fit.summary = "joint " + std::to_string(j + 1) + ": " + fit.solver.BriefReport();
+  fit.rms_rad = std::sqrt(2.0 * fit.solver.final_cost / double(samples.size())) * kAngleSdRad;
+  // The profile's slope ∂cost/∂log w (the others at their optimum).
+  problem.SetParameterBlockVariable(&fit.log_width);
+  ceres::Problem::EvaluateOptions evaluate;
+  evaluate.parameter_blocks = {&fit.log_width};
+  std::vector<double> gradient;
+  problem.Evaluate(evaluate, nullptr, nullptr, &gradient, nullptr);
+  fit.width_slope = gradient[0];
+  if (!final) return fit;
   std::vector<double*> blocks;
   for (auto& tip : fit.tips) blocks.push_back(&tip);
   blocks.push_back(fit.scaled_law.data());
   blocks.push_back(&fit.held_friction_nm);
   blocks.push_back(&fit.backlash_rad);
-  Covariance(&problem, blocks, cluster_of_row, &fit);
+  if (fit.width_above_floor) blocks.push_back(&fit.log_width);
+  Covariance(&problem, blocks, cluster_of_row, fit.width_above_floor ? 7 : 6, &fit);
   if (!options.held_friction) {  // held at 0: no uncertainty, no correlation
     fit.sandwich.row(4).setZero(), fit.sandwich.col(4).setZero();
     fit.white.row(4).setZero(), fit.white.col(4).setZero();
   }
   return fit;
+}
+
+// The take-up width profiled as the smoother's (joint_smoother_width.h):
+// held in each solve, Brent's method over log w from the floor to the largest
+// load the clamps put on the joint, every solve started from the best so far.
+// Returns the best solve (not final) and whether w left its floor.
+JointFit ProfiledFit(const std::vector<const IdentificationSample*>& samples, int j,
+                     const models::JointParameters& joint, const QuasiStaticOptions& options) {
+  double largest = 0.0;
+  for (const auto* s : samples) {
+    largest = std::max(largest, std::abs(s->effort_nm[j] - models::BiasTorqueAt(
+                                             joint, s->angle_rad[j], s->insertion_depth_m)));
+  }
+  JointFit best = SolveJoint(samples, j, joint, options, std::log(kWidthFloorNm), nullptr, false);
+  JointFit last = best;
+  detail::WidthSearch search;
+  search.lower = {std::log(kWidthFloorNm), 0.0};
+  search.upper = {std::max(search.lower[0], std::log(largest)), 0.0};
+  search.search = {true, false};
+  search.solve_at = [&](const std::array<double, 2>& log_width) {
+    last = SolveJoint(samples, j, joint, options, log_width[0], &best, false);
+    if (last.solver.IsSolutionUsable() && last.solver.final_cost < best.solver.final_cost)
+      best = last;
+    return last.solver;
+  };
+  // Always searched: a clamp-by-clamp solve is cheap, and on noisy poses the
+  // profile can rise from the floor before it falls to a wider take-up (the
+  // third generator's noise ×3 at 100 Hz: joint 2's δ 2.6 mrad at the floor,
+  // 5.0 true).
+  search.slope = [] { return std::array<double, 2>{-1.0, 0.0}; };
+  const detail::WidthProfile profile = detail::ProfileWidths(search);
+  best.log_width = profile.log_width[0];
+  best.width_above_floor = best.log_width > search.lower[0] + 0.1;  // 10 % above
+  return best;
+}
+
+// The angle RMS on clamps of the other depth parity (ranked 5 mm bins, as
+// clamped_cv.py), both ways round, of the fit with the width profiled or held
+// at its floor: only the clamps' tips are fitted on the held-out side.
+double HeldOutRms(const std::vector<const IdentificationSample*>& samples, int j,
+                  const models::JointParameters& joint, const QuasiStaticOptions& options,
+                  bool profiled) {
+  std::map<long, int> rank;
+  for (const auto* s : samples) rank[std::lround(s->insertion_depth_m / 0.005)] = 0;
+  int r = 0;
+  for (auto& [bin, at] : rank) at = r++;
+  double square_sum = 0.0, rows = 0.0;
+  for (int parity = 0; parity < 2; ++parity) {
+    std::vector<const IdentificationSample*> train, test;
+    for (const auto* s : samples)
+      (rank[std::lround(s->insertion_depth_m / 0.005)] % 2 == parity ? train : test).push_back(s);
+    const JointFit fit =
+        profiled ? ProfiledFit(train, j, joint, options)
+                 : SolveJoint(train, j, joint, options, std::log(kWidthFloorNm), nullptr, false);
+    JointFit start = fit;
+    start.tips.clear();
+    const JointFit held = SolveJoint(test, j, joint, options, fit.log_width, &start, false, true);
+    square_sum += held.rms_rad * held.rms_rad * double(test.size());
+    rows += double(test.size());
+  }
+  return std::sqrt(square_sum / rows);
+}
+
+// The take-up width is kept above its floor only where that predicts clamps
+// at depths the fit has not seen better than the hard wall: on the real JHU
+// clamps a profiled width of 0.59 N·m took up what the law lacks and the
+// held-out depths' spread grew (clamped_cv.py 1.52 → 1.56 mrad); on a
+// generator's wide take-up it put K within 1 σ where the wall left it 13 σ off
+// (docs/decisions/identify-auto-on-poses-of-both-joints.md).
+JointFit FitJoint(const std::vector<const IdentificationSample*>& samples, int j,
+                  const models::JointParameters& joint, const QuasiStaticOptions& options,
+                  std::string* width_line) {
+  if (joint.compliance.form == models::ComplianceForm::kBeamSeries)
+    throw std::invalid_argument("the quasi-static identification fits a cubic law "
+                                "(--model inverse_cubic or direct_cubic)");
+  JointFit best = ProfiledFit(samples, j, joint, options);
+  char line[200];
+  if (best.width_above_floor) {
+    const double wall = HeldOutRms(samples, j, joint, options, false);
+    const double profiled = HeldOutRms(samples, j, joint, options, true);
+    std::snprintf(line, sizeof line,
+                  "  joint %d take-up width %.3g N·m %s (held-out depths' angle RMS %.3g mrad "
+                  "against %.3g at the floor, %.3g N·m)\n",
+                  j + 1, std::exp(best.log_width), profiled < wall ? "kept" : "not kept",
+                  1e3 * profiled, 1e3 * wall, kWidthFloorNm);
+    if (!(profiled < wall)) {
+      best = SolveJoint(samples, j, joint, options, std::log(kWidthFloorNm), nullptr, false);
+      best.width_above_floor = false;
+    }
+  } else {
+    std::snprintf(line, sizeof line, "  joint %d take-up width at its floor, %.3g N·m\n", j + 1,
+                  kWidthFloorNm);
+  }
+  *width_line = line;
+  return SolveJoint(samples, j, joint, options, best.log_width, &best, true);
 }
 
 void Store(const JointFit& fit, int j, const QuasiStaticOptions& options,
@@ -146,6 +272,7 @@ void Store(const JointFit& fit, int j, const QuasiStaticOptions& options,
   for (int i = 0; i < 4; ++i)
     joint.compliance.cubic.coefficients[i] = fit.scaled_law[i] * fit.law_scale[i];
   joint.backlash_rad = fit.backlash_rad;
+  joint.deadzone_width_nm = std::exp(fit.log_width);
   // Equation (2)'s switch guards δ's sign against effort noise; on quasi-static
   // means δ is a fraction of a mrad (the held friction carries the loops'
   // width), and the switch would leave every load below tau_min uncorrected:
@@ -208,8 +335,10 @@ IdentificationResult RunQuasiStaticIdentification(const IdentificationData& data
       continue;
     }
     any = true;
-    const JointFit fit = FitJoint(samples, j, joint, options);
+    std::string width_line;
+    const JointFit fit = FitJoint(samples, j, joint, options, &width_line);
     Store(fit, j, options, samples, &result, &names, &blocks);
+    result.report += width_line;
     friction.values[j] = fit.held_friction_nm;
     friction.sd[j] = std::sqrt(std::max(0.0, fit.sandwich(4, 4)));
     const double scatter = detail::DescribeMisfit(data, result.parameters, friction, j, options,
