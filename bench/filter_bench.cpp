@@ -121,6 +121,18 @@ void BM_FilterStepAligned(benchmark::State& state) {
   TimeSteps(state, [&](const FilterSample& s) { benchmark::DoNotOptimize(filter.Step(s)); });
 }
 
+// With the effort's correlated noise carried as a Gauss–Markov effort offset
+// β (σ 10 mN·m over 20 ms, as `pliant filter` sets it where a log's still
+// stretches show it: docs/decisions/coloured-effort-noise.md): β's decay
+// and its share of every update. What that costs on top of BM_FilterStep.
+void BM_FilterStepColouredEffort(benchmark::State& state) {
+  pliant::estimation::FilterOptions options;
+  options.effort_offset_sd_nm.setConstant(0.01);
+  options.effort_offset_correlation_s.setConstant(0.02);
+  pliant::estimation::ComplianceFilter filter(pliant::models::testing::PaperParameters(), options);
+  TimeSteps(state, [&](const FilterSample& s) { benchmark::DoNotOptimize(filter.Step(s)); });
+}
+
 // The same log without the tip_fixed hint, as online: contact is inferred
 // (FilterOptions::infer_contact, the two-hypothesis collapse) and the arm's
 // own torque learned (a 4×4 information update per joint). What the contact
@@ -223,6 +235,7 @@ void BM_Offline900k(benchmark::State& state) {
 BENCHMARK(BM_Equation2)->Iterations(2'000'000);
 BENCHMARK(BM_FilterStep)->Iterations(2'000'000);
 BENCHMARK(BM_FilterStepAligned)->Iterations(2'000'000);
+BENCHMARK(BM_FilterStepColouredEffort)->Iterations(2'000'000);
 BENCHMARK(BM_FilterStepContact)->Iterations(2'000'000);
 BENCHMARK(BM_FilterStepFriction)->Iterations(2'000'000)->Arg(0)->Arg(1);
 BENCHMARK(BM_FilterStepDeflection)->Iterations(2'000'000)->Arg(0)->Arg(1);
