@@ -240,9 +240,10 @@ Command AddFilterCommand(CLI::App& app) {
          "Gauss–Markov process of stationary σ --effort-offset-sd), which a white model would "
          "average down over a hold (default inf: a constant offset; docs/decisions/"
          "coloured-effort-noise.md)");
-  sub->add_flag_function("--no-effort-colour", [&f](std::int64_t) { f.effort_colour_from_log = false; },
-                "Do not carry the correlated effort noise the log's still stretches show as the "
-                "effort offset β (docs/decisions/coloured-effort-noise.md)");
+  sub->add_flag_function(
+      "--no-effort-colour", [&f](std::int64_t) { f.effort_colour_from_log = false; },
+      "Do not carry the correlated effort noise the log's still stretches show as the effort "
+      "offset β (docs/decisions/coloured-effort-noise.md)");
   CLI::Option* unloaded_start = sub->add_option("--unloaded-start", f.unloaded_start_s,
                   "Seconds at the log's start with the instrument untouched and the arm still "
                   "(e.g. before it approaches the tissue): the efforts there tare the effort "

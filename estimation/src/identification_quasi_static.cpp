@@ -33,8 +33,8 @@ std::vector<const IdentificationSample*> ClampedSamples(const IdentificationData
   std::vector<const IdentificationSample*> out;
   const std::set<int> loaded = detail::ClampsThatLoad(data, j);
   for (const auto& s : data.samples) {
-    if (s.tip_fixed && loaded.count(s.segment) && std::isfinite(s.angle_rad[j]) && std::isfinite(s.effort_nm[j]) &&
-        std::isfinite(s.insertion_depth_m))
+    if (s.tip_fixed && loaded.count(s.segment) && std::isfinite(s.angle_rad[j]) &&
+        std::isfinite(s.effort_nm[j]) && std::isfinite(s.insertion_depth_m))
       out.push_back(&s);
   }
   return out;
@@ -71,7 +71,8 @@ void Covariance(ceres::Problem* problem, const std::vector<double*>& blocks,
   detail::EvaluateJacobian(problem, blocks, {}, &jacobian, &r);
   std::vector<Eigen::Index> wanted;
   for (Eigen::Index c = jacobian.cols() - globals; c < jacobian.cols(); ++c) wanted.push_back(c);
-  const detail::SandwichCovariance s = detail::ClusteredSandwich(jacobian, r, cluster_of_row, wanted);
+  const detail::SandwichCovariance s =
+      detail::ClusteredSandwich(jacobian, r, cluster_of_row, wanted);
   const double dof = std::max(1.0, double(r.size() - jacobian.cols()));
   Eigen::VectorXd unscale(6);
   unscale << fit->law_scale[0], fit->law_scale[1], fit->law_scale[2], fit->law_scale[3], 1.0, 1.0;
