@@ -28,11 +28,25 @@ Experiments (canonical pliant CSV, docs/log-format.md):
   truth.json       every true parameter, K and delta at the clamp and test depths.
   *_truth.csv      per row: the true tau_ext, b and K (for sanity checks only).
 
+Hidden effects (--effect NAME, physics.Effect; default none = the paper's model only). ONE
+effect the paper's model lacks, in both logs; fixed constants, no random draws; the test log's
+random stream is kept identical to --effect none's (paired logs, see main()):
+  deflection_coupling        Dq1 += k*tau2_ext, Dq2 += k*tau1_ext, k = 0.3*sqrt(K1*K2) (symmetric)
+  effort_drift               effort += 0.05 N*m/min * t per joint (calibration poses 0.3 s apart)
+  load_dependent_compliance  K -> K*(1 - 0.25*|tau_ext|/1 N*m) (secant; monotone beyond 1.5 N*m)
+  held_friction              effort += f, Coulomb 0.08 N*m in the drive, play state of the motor
+                             angle with a 0.5 mrad presliding zone (holds at rest)
+  effort_delay               recorded effort = true effort 25 ms earlier (test log; the quasi-
+                             static calibration poses are settled and unaffected)
+  backlash_depth             delta(L) = delta*max(0.25, 1 + 2*(L - 0.155)/0.1)
+  bias_torque_cross_joint    joint 1's bias += 0.05*sin(2*q2) (zero along joint 1's own sweep)
+
 Usage: generate.py [--seed N] [--k-scale K1 K2] [--clearance D1 D2] [--noise-scale X]
-                   [--rate HZ] [--out DIR]          (clearance in rad)
+                   [--rate HZ] [--out DIR] [--effect NAME]  (clearance in rad)
        diagnostics: [--effort-tc SECONDS] [--no-cross-bias]
 """
 import argparse
+import copy
 import json
 import math
 import os
@@ -112,15 +126,22 @@ def fmt(col, v):
 
 # ------------------------------------------------------------------ calibration (quasi-static)
 class Calibration:
-    def __init__(self, ins):
+    def __init__(self, ins, effect=None):
         self.ins, self.rec, self.seg, self.k = ins, Recorder(), 0, 0
         self.qm = [0.0, 0.0]
+        self.fx = effect if effect is not None and effect.active else None
 
     def pose(self, L, held, tip, text):
         """One row: the mean of 20 samples at 1 kHz after settling."""
         ins, n = self.ins, 20
+        text_true = text
         enc = [np.mean(ph.quantise(self.qm[j] + ins.rng.normal(0, ins.jitter, n), COUNT)) for j in range(2)]
         t0 = ins.bias.tau0(self.qm[0], self.qm[1], L)
+        if self.fx:  # settled pose: the drive's torque at the motor angle, the sensor at pose time
+            fx = self.fx
+            true = [t0[j] + text[j] + fx.drive_torque(j, self.qm[j], self.qm[1]) for j in range(2)]
+            true = fx.record(self.k * fx.p.get("pose_s", 0.0), true) if fx.name == "effort_drift" else true
+            t0, text = [true[0], true[1]], [0.0, 0.0]
         eff = []
         for j in range(2):
             ins.noise[j].fresh()
@@ -130,11 +151,13 @@ class Calibration:
         row = dict(t=self.k, q1=enc[0], q2=enc[1], q3=float(ph.quantise(L, DEPTH_COUNT)), tau1=eff[0],
                    tau2=eff[1], q1_true=qtrue[0], q2_true=qtrue[1], q1_ref=ref[0], q2_ref=ref[1],
                    tip_fixed=int(held), segment=self.seg)
-        self.rec.add(row, [text[0], text[1], ins.clr[0].b, ins.clr[1].b, ins.K(0, L), ins.K(1, L)])
+        self.rec.add(row, [text_true[0], text_true[1], ins.clr[0].b, ins.clr[1].b, ins.K(0, L), ins.K(1, L)])
         self.k += 1
         return eff
 
     def free(self, L):
+        if self.fx:
+            self.fx.set_depth(self.ins.clr, L)
         for c in self.ins.clr:
             c.apply(0.0)
         return self.pose(L, False, None, [0.0, 0.0])
@@ -164,9 +187,15 @@ class Calibration:
                                          (+1, lambda e, q: q >= start)):
                     while True:
                         self.qm[j] += direction * dq
-                        for i in range(2):
-                            text[i] = ph.solve_held_load(ins.clr[i], ins.K(i, L), self.qm[i] - tip[i])
-                            ins.clr[i].apply(text[i])
+                        if self.fx:
+                            text = self.fx.solve_held(ins.clr, [ins.K(0, L), ins.K(1, L)],
+                                                      [self.qm[i] - tip[i] for i in range(2)], text)
+                            for i in range(2):
+                                ins.clr[i].apply(text[i])
+                        else:
+                            for i in range(2):
+                                text[i] = ph.solve_held_load(ins.clr[i], ins.K(i, L), self.qm[i] - tip[i])
+                                ins.clr[i].apply(text[i])
                         eff = self.pose(L, True, tip, text)
                         if until(eff[j], self.qm[j]):
                             break
@@ -174,17 +203,26 @@ class Calibration:
 
 # ------------------------------------------------------------------ test log (time-stamped)
 class DivotRun:
-    def __init__(self, ins, rate):
+    def __init__(self, ins, rate, effect=None):
         self.ins, self.dt, self.rec = ins, 1.0 / rate, Recorder()
+        self.fx = effect if effect is not None and effect.active else None
         self.t, self.seg = 0.0, 0
         self.qm, self.L = [0.0, 0.0], 0.15
         self.tip, self.held = None, False
 
     def sample(self, text):
         ins, dt = self.ins, self.dt
+        if self.fx:
+            self.fx.set_depth(ins.clr, self.L)
         enc = [float(ph.quantise(self.qm[j] + ins.rng.normal(0, ins.jitter), COUNT)) for j in range(2)]
         t0 = ins.bias.tau0(self.qm[0], self.qm[1], self.L)
-        eff = [t0[j] + text[j] + ins.noise[j].step(dt) for j in range(2)]
+        if self.fx:
+            fx = self.fx
+            true = [t0[j] + text[j] + fx.drive_torque(j, self.qm[j], self.qm[1]) for j in range(2)]
+            rec = fx.record(self.t, true)
+            eff = [rec[j] + ins.noise[j].step(dt) for j in range(2)]
+        else:
+            eff = [t0[j] + text[j] + ins.noise[j].step(dt) for j in range(2)]
         qtrue = list(self.tip) if self.held else [self.qm[j] - ins.clr[j].b for j in range(2)]
         ref = [qtrue[j] + ins.rng.normal(0, ins.ref_sd) for j in range(2)]
         row = dict(t=self.t, q1=enc[0], q2=enc[1], q3=float(ph.quantise(self.L, DEPTH_COUNT)), tau1=eff[0],
@@ -211,6 +249,14 @@ class DivotRun:
 
     def load(self, text):
         """Held tip: the arm applies text; the motor sits where the shaft's bend puts it."""
+        if self.fx:
+            ins, L = self.ins, self.L
+            k = self.fx.coupling(ins.K(0, L), ins.K(1, L))
+            for j in range(2):
+                b = ins.clr[j].apply(text[j])
+                self.qm[j] = self.tip[j] + b + self.fx.bend(ins.K(j, L), text[j]) + k * text[1 - j]
+            self.sample(text)
+            return
         for j in range(2):
             b = self.ins.clr[j].apply(text[j])
             self.qm[j] = self.tip[j] + b + self.ins.K(j, self.L) * text[j]
@@ -265,28 +311,50 @@ def main():
     ap.add_argument("--out", default="/tmp/third/default")
     ap.add_argument("--effort-tc", type=float, help="diagnostic: effort-noise correlation time, s (default drawn 5-30 ms)")
     ap.add_argument("--no-cross-bias", action="store_true", help="diagnostic: joint 1's bias without its cos(q2) factor")
+    ap.add_argument("--effect", default="none", choices=ph.EFFECT_NAMES,
+                    help="one hidden physical effect the paper's model lacks, in both logs (default none)")
     args = ap.parse_args()
     os.makedirs(args.out, exist_ok=True)
     ins = Instrument(args)
-    cal = Calibration(ins)
-    cal.sweeps()
-    cal.clamps()
+    effect = ph.Effect(args.effect, ins.delta)
+    if effect.active:
+        # Paired logs: the effect can change how many calibration poses are taken (the clamps stop
+        # on the measured effort), which would shift the random stream the test log draws from.
+        # Run the calibration with the effect on a copy of the instrument, then advance the
+        # original exactly as --effect none does, so the test log differs from --effect none's by
+        # the effect alone (same instrument, depths, pushes and noise).
+        ins_fx = copy.deepcopy(ins)
+        cal = Calibration(ins_fx, effect)
+        cal.sweeps()
+        cal.clamps()
+        plain = Calibration(ins)
+        plain.sweeps()
+        plain.clamps()
+        effect.reset()
+        effect.set_depth(ins.clr, 0.15)  # the test log starts at L = 0.15
+    else:
+        cal = Calibration(ins)
+        cal.sweeps()
+        cal.clamps()
     meta = [("robot", "PSM1 (synthetic)"), ("instrument", "third_generator instrument"),
             ("generator", f"experiments/third_generator seed={args.seed}")]
     cal.rec.write(os.path.join(args.out, "calibration.csv"), meta + [("timing", "quasi-static")],
                   os.path.join(args.out, "calibration_truth.csv"))
     depths = sorted(float(x) for x in ins.rng.uniform(0.095, 0.225, 4))
-    run = DivotRun(ins, args.rate)
+    run = DivotRun(ins, args.rate, effect)
     run.run(depths)
     run.rec.write(os.path.join(args.out, "test.csv"), meta + [("rate_hz", args.rate)],
                   os.path.join(args.out, "test_truth.csv"))
     truth = ins.truth(depths)
     truth.update(seed=args.seed, rate=args.rate, noise_scale=args.noise_scale,
                  rows=dict(calibration=len(cal.rec.rows), test=len(run.rec.rows)), duration_s=run.t)
+    if effect.active:
+        truth.update(effect=effect.describe())
     with open(os.path.join(args.out, "truth.json"), "w") as f:
         json.dump(truth, f, indent=1)
     print(f"wrote {args.out}: calibration {len(cal.rec.rows)} rows, test {len(run.rec.rows)} rows "
-          f"({run.t:.1f} s at {args.rate:g} Hz); K scale {ins.kscale}, delta {ins.delta}")
+          f"({run.t:.1f} s at {args.rate:g} Hz); K scale {ins.kscale}, delta {ins.delta}"
+          + (f"; effect {effect.name}" if effect.active else ""))
 
 
 if __name__ == "__main__":

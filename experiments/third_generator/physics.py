@@ -13,6 +13,7 @@ Conventions (see generate.py's docstring for the full statement):
     positive tau_ext drives the motor ahead (+) of the tip. Measured effort
     tau = tau0(q_enc, L) + tau_ext + coloured noise.
 """
+import bisect
 import math
 
 import numpy as np
@@ -144,3 +145,143 @@ class AR1:
 
 def quantise(q, count):
     return np.round(np.asarray(q, float) / count) * count
+
+
+# ---------------------------------------------------------------- hidden effects (--effect NAME)
+# One physical effect the paper's model lacks, added on top of everything above. Written from
+# first principles for this generator alone; the names are pliant's catalogue names so that a
+# diagnosis can be scored, nothing else is shared. The effect's constants are fixed numbers (no
+# random draws), so an effect never touches the instrument's random stream.
+EFFECT_NAMES = ("none", "deflection_coupling", "effort_drift", "load_dependent_compliance", "held_friction",
+                "effort_delay", "backlash_depth", "bias_torque_cross_joint")
+
+EFFECT_DEFAULTS = {
+    "none": {},
+    # symmetric off-diagonal compliance (Maxwell reciprocity): k12 = k21 = c*sqrt(K1*K2), rad/(N*m)
+    "deflection_coupling": dict(c=0.3),
+    # effort sensor offset drifting linearly in time, N*m per minute per joint; the quasi-static
+    # calibration's poses are spaced pose_s seconds apart (settling + averaging)
+    "effort_drift": dict(rate_per_min=[0.05, 0.05], pose_s=0.3),
+    # secant compliance K_eff = K*(1 - a*|tau|/tau_u) (a stiffening) up to |tau| = tau_c, then the
+    # deflection continues with the tangent slope there (kept monotone)
+    "load_dependent_compliance": dict(a=0.25, tau_u=1.0, tau_c=1.5),
+    # Coulomb friction in the drive, between the motor and the effort sensor's load path: the
+    # effort reads tau0 + tau_ext + f, f a play (Dahl-like) state of the motor angle with a linear
+    # presliding zone z (rad) that saturates at +-Fc after a motion in either direction and holds
+    "held_friction": dict(Fc=[0.08, 0.08], z=5e-4),
+    # the recorded effort is the true one delayed by lag seconds (quasi-static poses are unaffected)
+    "effort_delay": dict(lag=0.025),
+    # clearance half-width delta(L) = delta*max(floor, 1 + g*(L - L0)/dL)
+    "backlash_depth": dict(g=2.0, L0=0.155, dL=0.1, floor=0.25),
+    # joint 1's bias gains amp*sin(2*q2): zero on joint 1's own sweep (q2 = 0)
+    "bias_torque_cross_joint": dict(amp=0.05),
+}
+
+
+class Effect:
+    """The hidden effect's physics and its per-log state (friction, delay line)."""
+
+    def __init__(self, name, delta0):
+        if name not in EFFECT_NAMES:
+            raise ValueError(f"unknown effect {name!r}; one of {', '.join(EFFECT_NAMES)}")
+        self.name, self.p, self.delta0 = name, dict(EFFECT_DEFAULTS[name]), list(delta0)
+        self.reset()
+
+    @property
+    def active(self):
+        return self.name != "none"
+
+    def reset(self):
+        """Fresh per-log state: friction at zero, empty delay line."""
+        self.f, self.qprev = [0.0, 0.0], [None, None]
+        self.ht, self.he = [], [[], []]
+
+    def describe(self):
+        return dict(name=self.name, params=self.p)
+
+    # ---- mechanics
+    def bend(self, K, tau):
+        """Elastic deflection of a joint of nominal compliance K under load tau (rad)."""
+        if self.name != "load_dependent_compliance":
+            return K * tau
+        a, tu, tc = self.p["a"] / self.p["tau_u"], self.p["tau_u"], self.p["tau_c"]
+        s, m = (1.0 if tau >= 0 else -1.0), abs(tau)
+        if m <= tc:
+            return K * tau * (1.0 - a * m)
+        return s * K * (tc * (1.0 - a * tc) + (m - tc) * (1.0 - 2.0 * a * tc))
+
+    def coupling(self, K1, K2):
+        if self.name != "deflection_coupling":
+            return 0.0
+        return self.p["c"] * math.sqrt(K1 * K2)
+
+    def set_depth(self, clrs, L):
+        """Depth-dependent clearance: rescale delta and the shaft's place in it (relative place kept)."""
+        if self.name != "backlash_depth":
+            return
+        p = self.p
+        fac = max(p["floor"], 1.0 + p["g"] * (float(L) - p["L0"]) / p["dL"])
+        for j, c in enumerate(clrs):
+            new = self.delta0[j] * fac
+            if new != c.delta:
+                c.b *= new / c.delta
+                c.delta = new
+
+    def solve_held(self, clrs, Ks, gaps, guess):
+        """tau_ext on both joints of a held tip: peek_i(tau_i) + bend(K_i, tau_i) + k*tau_other = gap_i.
+
+        Gauss-Seidel over the joints (contraction: k^2/(K1*K2) = c^2 < 1), bisection per joint."""
+        k = self.coupling(Ks[0], Ks[1])
+        tau = list(guess)
+        for _ in range(60 if k else 1):
+            old = list(tau)
+            for i in range(2):
+                tau[i] = solve_held_load_fn(clrs[i], lambda t, i=i: self.bend(Ks[i], t),
+                                            gaps[i] - k * tau[1 - i])
+            if max(abs(tau[0] - old[0]), abs(tau[1] - old[1])) < 1e-13:
+                break
+        return tau
+
+    # ---- effort sensor
+    def drive_torque(self, j, qm, q2):
+        """Torque the drive adds to the effort at motor angle qm (friction, extra bias)."""
+        extra = 0.0
+        if self.name == "held_friction":
+            if self.qprev[j] is not None:
+                fc, z = self.p["Fc"][j], self.p["z"]
+                self.f[j] = min(fc, max(-fc, self.f[j] + fc * (qm - self.qprev[j]) / z))
+            self.qprev[j] = qm
+            extra += self.f[j]
+        if self.name == "bias_torque_cross_joint" and j == 0:
+            extra += self.p["amp"] * math.sin(2.0 * q2)
+        return extra
+
+    def record(self, t, true_eff):
+        """What the sensor records at time t of the true efforts (delay line, drift); no noise."""
+        out = list(true_eff)
+        if self.name == "effort_delay":
+            self.ht.append(t)
+            for j in range(2):
+                self.he[j].append(true_eff[j])
+            td = t - self.p["lag"]
+            if td <= self.ht[0]:
+                out = [self.he[j][0] for j in range(2)]
+            else:
+                k = bisect.bisect_left(self.ht, td)  # ht[k-1] < td <= ht[k]
+                w = (td - self.ht[k - 1]) / (self.ht[k] - self.ht[k - 1])
+                out = [self.he[j][k - 1] + w * (self.he[j][k] - self.he[j][k - 1]) for j in range(2)]
+        if self.name == "effort_drift":
+            out = [out[j] + self.p["rate_per_min"][j] * t / 60.0 for j in range(2)]
+        return out
+
+
+def solve_held_load_fn(clr, bend, gap):
+    """solve_held_load with a monotone deflection law bend(tau) in place of K*tau."""
+    lo, hi = -20.0, 20.0
+    for _ in range(80):
+        mid = 0.5 * (lo + hi)
+        if clr.peek(mid) + bend(mid) < gap:
+            lo = mid
+        else:
+            hi = mid
+    return 0.5 * (lo + hi)
