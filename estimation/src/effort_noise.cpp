@@ -117,8 +117,9 @@ EffortNoiseColour EffortNoiseColourFromStill(
   const Eigen::VectorXd lag = Eigen::VectorXd::LinSpaced(lags, 1.0, lags) * sample_period_s;
   const Eigen::VectorXd w = pairs;  // each lag weighted by its pairs
   double best = std::numeric_limits<double>::infinity();
-  for (int g = 0; g < 200; ++g) {  // τc from half a period to 0.5 s, geometric
-    const double tc = 0.5 * sample_period_s * std::pow(1.0 / sample_period_s, g / 199.0);
+  const double shortest_s = 0.5 * sample_period_s, longest_s = 0.5;
+  for (int g = 0; g < 200; ++g) {  // τc over a geometric grid
+    const double tc = shortest_s * std::pow(longest_s / shortest_s, g / 199.0);
     Eigen::MatrixX2d a(lags, 2);
     a.col(0).setOnes();
     a.col(1) = (1.0 - (-lag.array() / tc).exp()).matrix();

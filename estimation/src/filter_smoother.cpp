@@ -11,8 +11,9 @@ constexpr int kTorque = kStateTorque, kBacklash = kStateBacklash, kScale = kStat
               kClearance = kStateClearance, kOffset = kStateEffortOffset;
 using Matrix = FilterStateMatrix;
 
-// F·M for the transition's F: the identity but for β's diagonal (ρ) and tau's row (∂tau+/∂tau,
-// ∂tau+/∂s) and b's (∂b+/∂tau, ∂b+/∂b, ∂b+/∂e), so only those two rows change.
+// F·M for the transition's F: the identity but for β's diagonal (ρ), tau's row
+// (∂tau+/∂tau, ∂tau+/∂s) and b's (∂b+/∂tau, ∂b+/∂b, ∂b+/∂e), so only those
+// three rows change.
 Matrix TransitionTimes(const FilterTransition& t, const Matrix& m) {
   Matrix out = m;
   out.row(kTorque) = t.f_torque_torque * m.row(kTorque) + t.f_torque_scale * m.row(kScale);

@@ -53,7 +53,7 @@ struct JointFit {
   double held_friction_nm = 0.0, backlash_rad = 0.0, log_width = 0.0;
   bool width_above_floor = false;
   Eigen::MatrixXd sandwich, white;  // over (law ×4, F, δ), the law unscaled
-  double rms_rad = 0.0, width_slope = 0.0;
+  double rms_rad = 0.0;
   int clusters = 0;
   ceres::Solver::Summary solver;
   std::string summary;
@@ -149,14 +149,8 @@ JointFit SolveJoint(const std::vector<const IdentificationSample*>& samples, int
   ceres::Solve(solver, &problem, &fit.solver);
   fit.summary = "joint " + std::to_string(j + 1) + ": " + fit.solver.BriefReport();
   fit.rms_rad = std::sqrt(2.0 * fit.solver.final_cost / double(samples.size())) * kAngleSdRad;
-  // The profile's slope ∂cost/∂log w (the others at their optimum).
-  problem.SetParameterBlockVariable(&fit.log_width);
-  ceres::Problem::EvaluateOptions evaluate;
-  evaluate.parameter_blocks = {&fit.log_width};
-  std::vector<double> gradient;
-  problem.Evaluate(evaluate, nullptr, nullptr, &gradient, nullptr);
-  fit.width_slope = gradient[0];
   if (!final) return fit;
+  problem.SetParameterBlockVariable(&fit.log_width);  // its doubt, where above its floor
   std::vector<double*> blocks;
   for (auto& tip : fit.tips) blocks.push_back(&tip);
   blocks.push_back(fit.scaled_law.data());
@@ -171,65 +165,72 @@ JointFit SolveJoint(const std::vector<const IdentificationSample*>& samples, int
   return fit;
 }
 
-// The take-up width profiled as the smoother's (joint_smoother_width.h):
-// held in each solve, Brent's method over log w from the floor to the largest
-// load the clamps put on the joint, every solve started from the best so far.
-// Returns the best solve (not final) and whether w left its floor.
-JointFit ProfiledFit(const std::vector<const IdentificationSample*>& samples, int j,
-                     const models::JointParameters& joint, const QuasiStaticOptions& options) {
+// The fits at the take-up width's floor (a hard wall) and at the width
+// profiled as the smoother's (joint_smoother_width.h): held in each solve,
+// Brent's method over log w from the floor to the largest load the clamps put
+// on the joint, every solve started from the best so far.
+struct WidthFits {
+  JointFit floor, profiled;
+};
+WidthFits ProfiledFit(const std::vector<const IdentificationSample*>& samples, int j,
+                      const models::JointParameters& joint, const QuasiStaticOptions& options) {
   double largest = 0.0;
   for (const auto* s : samples) {
     largest = std::max(largest, std::abs(s->effort_nm[j] - models::BiasTorqueAt(
                                              joint, s->angle_rad[j], s->insertion_depth_m)));
   }
-  JointFit best = SolveJoint(samples, j, joint, options, std::log(kWidthFloorNm), nullptr, false);
-  JointFit last = best;
+  WidthFits out;
+  out.floor = SolveJoint(samples, j, joint, options, std::log(kWidthFloorNm), nullptr, false);
+  JointFit best = out.floor;
   detail::WidthSearch search;
   search.lower = {std::log(kWidthFloorNm), 0.0};
   search.upper = {std::max(search.lower[0], std::log(largest)), 0.0};
   search.search = {true, false};
   search.solve_at = [&](const std::array<double, 2>& log_width) {
-    last = SolveJoint(samples, j, joint, options, log_width[0], &best, false);
+    const JointFit last = SolveJoint(samples, j, joint, options, log_width[0], &best, false);
     if (last.solver.IsSolutionUsable() && last.solver.final_cost < best.solver.final_cost)
       best = last;
     return last.solver;
   };
-  // Always searched: a clamp-by-clamp solve is cheap, and on noisy poses the
-  // profile can rise from the floor before it falls to a wider take-up (the
-  // third generator's noise ×3 at 100 Hz: joint 2's δ 2.6 mrad at the floor,
-  // 5.0 true).
+  // Always searched (a negative slope at the floor): a clamp-by-clamp solve
+  // is cheap, and on noisy poses the profile can rise from the floor before
+  // it falls to a wider take-up (the third generator's noise ×3 at 100 Hz:
+  // joint 2's δ 2.6 mrad at the floor, 5.0 true).
   search.slope = [] { return std::array<double, 2>{-1.0, 0.0}; };
   const detail::WidthProfile profile = detail::ProfileWidths(search);
-  best.log_width = profile.log_width[0];
-  best.width_above_floor = best.log_width > search.lower[0] + 0.1;  // 10 % above
-  return best;
+  out.profiled = best;
+  out.profiled.log_width = profile.log_width[0];
+  out.profiled.width_above_floor = best.log_width > search.lower[0] + 0.1;  // 10 % above
+  return out;
 }
 
 // The angle RMS on clamps of the other depth parity (ranked 5 mm bins, as
-// clamped_cv.py), both ways round, of the fit with the width profiled or held
-// at its floor: only the clamps' tips are fitted on the held-out side.
-double HeldOutRms(const std::vector<const IdentificationSample*>& samples, int j,
-                  const models::JointParameters& joint, const QuasiStaticOptions& options,
-                  bool profiled) {
+// clamped_cv.py), both ways round, of the fits at the floor and profiled
+// (floor, profiled): only the clamps' tips are fitted on the held-out side.
+std::array<double, 2> HeldOutRms(const std::vector<const IdentificationSample*>& samples, int j,
+                                 const models::JointParameters& joint,
+                                 const QuasiStaticOptions& options) {
   std::map<long, int> rank;
   for (const auto* s : samples) rank[std::lround(s->insertion_depth_m / 0.005)] = 0;
   int r = 0;
   for (auto& [bin, at] : rank) at = r++;
-  double square_sum = 0.0, rows = 0.0;
+  std::array<double, 2> square_sum{0.0, 0.0};
+  double rows = 0.0;
   for (int parity = 0; parity < 2; ++parity) {
     std::vector<const IdentificationSample*> train, test;
     for (const auto* s : samples)
       (rank[std::lround(s->insertion_depth_m / 0.005)] % 2 == parity ? train : test).push_back(s);
-    const JointFit fit =
-        profiled ? ProfiledFit(train, j, joint, options)
-                 : SolveJoint(train, j, joint, options, std::log(kWidthFloorNm), nullptr, false);
-    JointFit start = fit;
-    start.tips.clear();
-    const JointFit held = SolveJoint(test, j, joint, options, fit.log_width, &start, false, true);
-    square_sum += held.rms_rad * held.rms_rad * double(test.size());
+    const WidthFits fits = ProfiledFit(train, j, joint, options);
+    for (int k = 0; k < 2; ++k) {
+      JointFit start = k == 0 ? fits.floor : fits.profiled;
+      start.tips.clear();
+      const JointFit held =
+          SolveJoint(test, j, joint, options, start.log_width, &start, false, true);
+      square_sum[k] += held.rms_rad * held.rms_rad * double(test.size());
+    }
     rows += double(test.size());
   }
-  return std::sqrt(square_sum / rows);
+  return {std::sqrt(square_sum[0] / rows), std::sqrt(square_sum[1] / rows)};
 }
 
 // The take-up width is kept above its floor only where that predicts clamps
@@ -244,20 +245,17 @@ JointFit FitJoint(const std::vector<const IdentificationSample*>& samples, int j
   if (joint.compliance.form == models::ComplianceForm::kBeamSeries)
     throw std::invalid_argument("the quasi-static identification fits a cubic law "
                                 "(--model inverse_cubic or direct_cubic)");
-  JointFit best = ProfiledFit(samples, j, joint, options);
+  const WidthFits fits = ProfiledFit(samples, j, joint, options);
+  JointFit best = fits.profiled;  // (within 10 % of the floor: the profile's minimum there)
   char line[200];
-  if (best.width_above_floor) {
-    const double wall = HeldOutRms(samples, j, joint, options, false);
-    const double profiled = HeldOutRms(samples, j, joint, options, true);
+  if (fits.profiled.width_above_floor) {
+    const auto [wall, profiled] = HeldOutRms(samples, j, joint, options);
     std::snprintf(line, sizeof line,
                   "  joint %d take-up width %.3g N·m %s (held-out depths' angle RMS %.3g mrad "
                   "against %.3g at the floor, %.3g N·m)\n",
-                  j + 1, std::exp(best.log_width), profiled < wall ? "kept" : "not kept",
+                  j + 1, std::exp(fits.profiled.log_width), profiled < wall ? "kept" : "not kept",
                   1e3 * profiled, 1e3 * wall, kWidthFloorNm);
-    if (!(profiled < wall)) {
-      best = SolveJoint(samples, j, joint, options, std::log(kWidthFloorNm), nullptr, false);
-      best.width_above_floor = false;
-    }
+    if (!(profiled < wall)) best = fits.floor;
   } else {
     std::snprintf(line, sizeof line, "  joint %d take-up width at its floor, %.3g N·m\n", j + 1,
                   kWidthFloorNm);

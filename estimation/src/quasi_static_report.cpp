@@ -30,7 +30,9 @@ std::map<int, std::vector<Row>> Loads(const IdentificationData& data,
   std::map<int, std::vector<Row>> out;
   const std::set<int> loaded = detail::ClampsThatLoad(data, j);
   for (const auto& s : data.samples) {
-    if (!s.tip_fixed || !loaded.count(s.segment) || !std::isfinite(s.angle_rad[j]) || !std::isfinite(s.effort_nm[j])) continue;
+    if (!s.tip_fixed || !loaded.count(s.segment) || !std::isfinite(s.angle_rad[j]) ||
+        !std::isfinite(s.effort_nm[j]))
+      continue;
     models::JointState<double> state;
     state.travel_since_reversal_rad = s.travel_since_reversal_rad;
     const double load = s.effort_nm[j] -
