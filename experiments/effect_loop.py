@@ -23,7 +23,7 @@ SCENARIOS = os.path.join(HERE, "scenarios")
 
 CASES = [
     ("joint_friction", '{"coulomb1":0.05,"coulomb2":0.05}', []),
-    ("effort_drift", '{"drift1":0.05,"drift2":-0.05,"time_constant":20}', []),
+    ("effort_drift", '{"rate1":0.0025,"rate2":-0.0025,"settling_rate":0.05}', []),
     ("bias_torque_depth", '{"slope1":0.8,"slope2":-0.8}', []),
     ("load_dependent_compliance", '{"gamma1":0.004,"gamma2":0.004}', []),
     ("deflection_coupling", '{"k12":0.004,"k21":-0.004}', []),

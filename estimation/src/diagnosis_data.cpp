@@ -332,8 +332,7 @@ Problem BuildProblem(const io::Log& log, const std::string& log_path, const Base
   problem.groups = groups;
   problem.tip_groups = int(tip_group_of_run.size());
   problem.rms_window_s = options.rms_window_s;
-  problem.folds = std::min(wanted_folds, groups);
-  for (int g = 0; g < groups; ++g) problem.fold_of_group.push_back(g % problem.folds);
+  diagnosis::AssignFolds(wanted_folds, &problem);
 
   // Noise of the residual: effort noise through K(L) at the median depth,
   // encoder quantisation and the reference's own noise.

@@ -183,6 +183,11 @@ void NoteFittedOnThisLog(const models::ModelParameters& parameters, const std::s
 Problem BuildProblem(const io::Log& log, const std::string& log_path, const BaseModel& model,
                      const std::vector<Term>& added, const DiagnoseOptions& options);
 
+/// Sets problem->folds (≤ wanted, ≥ 2 where there are 2 groups) and deals the
+/// groups to them stratified: by the joints a group loads, then by depth, so
+/// every fold's training groups span each joint's depths.
+void AssignFolds(int wanted_folds, Problem* problem);
+
 /// Tip RMS (mm) of residuals over the samples where `keep(group)`, in the
 /// sense of sqrt(mean e1² + mean e2²) over each joint's used samples, each
 /// joint's residual first averaged over consecutive windows of
@@ -299,8 +304,10 @@ FittedEffects FitAdded(const Problem& problem, const BaseModel& model,
 std::vector<Eigen::Vector2d> CrossValidated(const Problem& problem, const BaseModel& model,
                                             const std::vector<Term>& fixed,
                                             const std::vector<Term>& fitted);
-/// Per CV group, the decrease of the tip-weighted sum of squares (mm²) from
-/// `before` to `after`: the blocks of BlockImprovementTest.
+/// Per CV group, ln(SS_before / SS_after) of the tip-weighted sums of squares
+/// of `before` and `after`: the blocks of BlockImprovementTest. Relative, so
+/// that segments whose errors differ by orders of magnitude (an effect that
+/// grows with time, load or depth) weigh alike.
 std::vector<double> GainPerGroup(const Problem& problem, const std::vector<Eigen::Vector2d>& before,
                                  const std::vector<Eigen::Vector2d>& after);
 

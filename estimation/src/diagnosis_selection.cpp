@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <numeric>
 
 #include "diagnosis_internal.h"
 
@@ -31,6 +32,42 @@ std::vector<Term> WithAddedRefit(const Problem& problem, const std::vector<Term>
   std::vector<Term> all = problem.added_refit;
   all.insert(all.end(), added.begin(), added.end());
   return all;
+}
+
+void AssignFolds(int wanted_folds, Problem* problem) {
+  // Dealt in turn, the groups of a log that visits depths in order put every
+  // shallow push of a joint in one fold: its training groups then hold that
+  // joint at the deep end only, and a refit depth tilt extrapolates from
+  // there. A stratified deal (joints loaded, then depth) keeps each fold's
+  // held-out groups inside the depths its training groups span.
+  struct Key {
+    int joints = 0;  ///< bit j: some sample loads joint j
+    double depth_m = 0.0;
+    int samples = 0;
+  };
+  std::vector<Key> key(std::size_t(problem->groups));
+  for (const Sample& s : problem->samples) {
+    Key& k = key[std::size_t(s.group)];
+    k.joints |= (s.used[0] ? 1 : 0) | (s.used[1] ? 2 : 0);
+    k.depth_m += s.state.insertion_depth_m, ++k.samples;
+  }
+  std::map<int, int> stratum_size;
+  for (Key& k : key) k.depth_m /= std::max(1, k.samples), ++stratum_size[k.joints];
+  std::vector<int> order(std::size_t(problem->groups));
+  std::iota(order.begin(), order.end(), 0);
+  // The scarcest stratum first: its groups are the ones to spread.
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+    const Key &ka = key[std::size_t(a)], &kb = key[std::size_t(b)];
+    if (ka.joints != kb.joints) {
+      const int na = stratum_size[ka.joints], nb = stratum_size[kb.joints];
+      return na != nb ? na < nb : ka.joints < kb.joints;
+    }
+    return ka.depth_m < kb.depth_m;
+  });
+  problem->folds = std::min(wanted_folds, problem->groups);
+  problem->fold_of_group.assign(std::size_t(problem->groups), 0);
+  for (std::size_t i = 0; i < order.size(); ++i)
+    problem->fold_of_group[std::size_t(order[i])] = int(i) % std::max(1, problem->folds);
 }
 
 Residual CrossValidated(const Problem& problem, const BaseModel& model,
@@ -74,20 +111,19 @@ double RmsDifferenceMm(const Problem& problem, const Residual& a, const Residual
 
 std::vector<double> GainPerGroup(const Problem& problem, const Residual& before,
                                  const Residual& after) {
-  std::vector<double> gain(problem.groups, 0.0);
-  std::vector<bool> seen(problem.groups, false);
+  std::vector<double> ss_before(problem.groups, 0.0), ss_after(problem.groups, 0.0);
   for (std::size_t i = 0; i < before.size(); ++i) {
     const Sample& s = problem.samples[i];
     for (int j = 0; j < 2; ++j) {
       if (!s.used[j]) continue;
       const double k = s.mm_per_rad[j] * s.mm_per_rad[j];
-      gain[s.group] += k * (before[i][j] * before[i][j] - after[i][j] * after[i][j]);
-      seen[s.group] = true;
+      ss_before[s.group] += k * before[i][j] * before[i][j];
+      ss_after[s.group] += k * after[i][j] * after[i][j];
     }
   }
   std::vector<double> out;
   for (int g = 0; g < problem.groups; ++g) {
-    if (seen[g]) out.push_back(gain[g]);
+    if (ss_before[g] > 0.0 && ss_after[g] > 0.0) out.push_back(std::log(ss_before[g] / ss_after[g]));
   }
   return out;
 }

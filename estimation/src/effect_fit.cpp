@@ -179,8 +179,7 @@ LogEffectFit FitEffectsOnLogs(const std::vector<NamedLog>& logs,
                          "add a clamped-beam or divot log, or identify without --effect");
   }
   problem.rms_window_s = options.rms_window_s;
-  problem.folds = std::min(std::max(2, options.folds), problem.groups);
-  for (int g = 0; g < problem.groups; ++g) problem.fold_of_group.push_back(g % problem.folds);
+  diagnosis::AssignFolds(std::max(2, options.folds), &problem);
   diagnosis::SetRecalibration(model, options.recalibrate_base, &problem);
   if (take_up && diagnosis::FitAddedWithTheTakeUp(model, &problem))
     out.notes.push_back(problem.notes.back());

@@ -37,10 +37,13 @@ std::vector<ParameterSpec> JointInertiaCouplingEffect::Parameters() const {
 }
 
 std::vector<ParameterSpec> EffortDriftEffect::Parameters() const {
-  // Thermal settling of motors and current sensors: minutes.
-  return {{"drift1", "N·m", 0.0, -0.5, 0.5, 0.05},
-          {"drift2", "N·m", 0.0, -0.5, 0.5, 0.05},
-          {"time_constant", "s", 600.0, 1.0, 1e5, 300.0}};
+  // The rate's prior: 0.3 N·m, about the PSM's whole bias torque, in five
+  // minutes. Thermal settling of motors and current sensors takes minutes, so
+  // 1/T is centred on 1/(10 min); 1/T = 0 (a linear creep) is inside half a
+  // prior sd of it.
+  return {{"rate1", "N·m/s", 0.0, -0.1, 0.1, 1e-3},
+          {"rate2", "N·m/s", 0.0, -0.1, 0.1, 1e-3},
+          {"settling_rate", "1/s", 1.0 / 600.0, 0.0, 1.0, 1.0 / 300.0}};
 }
 
 std::vector<ParameterSpec> BiasTorqueDepthEffect::Parameters() const {

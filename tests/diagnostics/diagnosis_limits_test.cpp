@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 #include "../../estimation/src/diagnosis_internal.h"
 #include "diagnosis_support.h"
@@ -111,6 +112,27 @@ TEST(DiagnoseLimits, TheSegmentBlockTestMatchesStudentsT) {
   EXPECT_NEAR(r.statistic, 2.0 * std::sqrt(3.0), 1e-12);
   EXPECT_NEAR(r.p_value, 0.5 - 2.0 * std::sqrt(3.0) / (2.0 * std::sqrt(14.0)), 1e-12);
   EXPECT_EQ(estimation::diagnosis::BlockImprovementTest({1.0}).p_value, 1.0);
+}
+
+// A segment's gain is ln(SS_before / SS_after): relative, so a segment whose
+// errors are 100× another's weighs the same when both are halved (ln 4 each),
+// and the unused joint (joint 2 here) is left out.
+TEST(DiagnoseLimits, ASegmentsGainIsTheLogOfItsSumOfSquaresRatio) {
+  estimation::diagnosis::Problem problem;
+  problem.groups = 2;
+  for (int g = 0; g < 2; ++g) {
+    estimation::diagnosis::Sample s;
+    s.group = g;
+    s.used = {true, false};
+    s.mm_per_rad = {100.0, 100.0};
+    problem.samples.push_back(s);
+  }
+  const std::vector<Eigen::Vector2d> before = {{0.02, 5.0}, {2e-4, 5.0}};
+  const std::vector<Eigen::Vector2d> after = {{0.01, 0.0}, {1e-4, 0.0}};
+  const auto gain = estimation::diagnosis::GainPerGroup(problem, before, after);
+  ASSERT_EQ(gain.size(), 2u);
+  EXPECT_NEAR(gain[0], std::log(4.0), 1e-12);
+  EXPECT_NEAR(gain[1], std::log(4.0), 1e-12);
 }
 
 }  // namespace

@@ -57,15 +57,16 @@ TEST(SeparatingExperiment, OnALogOfPosesItHoldsARecordedJointAndNamesNoTime) {
   EXPECT_EQ(text.find("joint 1"), std::string::npos) << text;
 }
 
-// An effort drift (a·(1 − e^(−t/T)), 0.05 N·m, T 20 s) against no effect:
+// An effort drift (r·(1 − e^(−kt))/k: r = 0.0025 N·m/s, k = 1/(20 s), so
+// settling at 0.05 N·m) against no effect:
 // the largest gap is the latest time tried, where joint 1's offset has
 // settled: relative to mid-log (t = 10 s) the drift changes joint 1's
 // deflection by K1(L)·0.05·e^(−0.5), at the depth of the largest K.
 TEST(SeparatingExperiment, ADriftIsSeparatedByHoldingLonger) {
   const BaseModel model(testing::ModelOf(testing::ShortDivot("{}")));
   const Problem problem = OneSample(20.0);
-  const Term drift = Fitted("effort_drift", {0.05, 0.0, 20.0});
-  const Term none = Fitted("effort_drift", {0.0, 0.0, 20.0});
+  const Term drift = Fitted("effort_drift", {0.0025, 0.0, 0.05});
+  const Term none = Fitted("effort_drift", {0.0, 0.0, 0.05});
   const std::string text = SeparatingExperiment(problem, model, {}, drift, none);
   EXPECT_NE(text.find("600 s into the log"), std::string::npos) << text;
 }

@@ -218,12 +218,23 @@ TEST(DiagnoseTakeUp, IdentifiedWithTheEffectTheTakeUpIsRefittedAsWhenAdded) {
     EXPECT_LT(written.joints[j].deadzone_width_nm, kWideTakeUpNm / std::exp(1.0)) << j;
 }
 
-TEST(DiagnoseTakeUp, OnAShortLogItSaysItCannotTellAndNamesThePush) {
-  const auto scenario = ShortDivot(kCubic);
+// Four pushes (two directions, two depths): every held-out segment gains
+// from the stiffening the take-up absorbed, so it is named. Asked for a
+// significance these few segments cannot reach, the probe says instead that
+// the log cannot tell, and names the push that would.
+TEST(DiagnoseTakeUp, OnAShortLogItNamesTheStiffeningOrSaysItCannotTellAndNamesThePush) {
+  const auto scenario = ShortDivot(kCubic, {"experiment.directions_deg=[0,90]"});
   const io::Log log = experiments::Simulate(scenario, 7).log;
   const models::ModelParameters absorbed = Absorbed(ModelOf(scenario), Cubic, 1.0);
   ExpectAbsorbed(absorbed, ModelOf(scenario));
-  const auto d = estimation::Diagnose(log, "divot.csv", absorbed, {});
+  const auto named = estimation::Diagnose(log, "divot.csv", absorbed, {});
+  EXPECT_EQ(named.missing_effect.value_or("none"), "load_dependent_compliance");
+  ASSERT_NE(ProbeNote(named), nullptr);
+  EXPECT_NE(ProbeNote(named)->find("load_dependent_compliance absorbed, and it is called missing"),
+            std::string::npos);
+  estimation::DiagnoseOptions strict;
+  strict.family_significance = 1e-12;
+  const auto d = estimation::Diagnose(log, "divot.csv", absorbed, strict);
   const std::string* note = ProbeNote(d);
   ASSERT_NE(note, nullptr);
   EXPECT_NE(note->find("this log cannot tell the take-up as refitted from "

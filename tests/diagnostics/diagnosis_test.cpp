@@ -48,8 +48,8 @@ TEST_P(HiddenEffect, RanksFirstAndHalvesTheHeldOutError) {
     // Known regression of the joint refit (diagnosis_selection.cpp): refitting K's
     // scale and the clearance with each candidate absorbs most of γ·τ³ on this
     // short log (one peak torque, two depths): it ranks first, but nothing is
-    // called missing (measured: 0.172 of the error removed, p 0.32; backlash_depth
-    // 0.169, p 0.17).
+    // called missing (measured: 0.189 of the error removed, p 0.20; backlash_depth
+    // 0.179, p 0.18).
     GTEST_SKIP() << "known regression: stiffening absorbed by the refit (see the comment)";
   }
   const auto scenario =
@@ -94,8 +94,8 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(
         HiddenCase{"joint_friction", R"({"coulomb1":0.05,"coulomb2":0.05})", "coulomb1", 0.05, "",
                    {"v1", "v2"}},
-        HiddenCase{"effort_drift", R"({"drift1":0.05,"drift2":-0.05,"time_constant":20})",
-                   "drift1", 0.05, "", {"t"}},
+        HiddenCase{"effort_drift", R"({"rate1":0.0025,"rate2":-0.0025,"settling_rate":0.05})",
+                   "rate1", 0.0025, "", {"t"}},
         HiddenCase{"bias_torque_depth", R"({"slope1":0.8,"slope2":-0.8})", "slope2", -0.8, "", {"q3"}},
         HiddenCase{"load_dependent_compliance", R"({"gamma1":0.004,"gamma2":0.004})", "gamma1",
                    0.004, "", {"tau1", "tau2"}},

@@ -47,13 +47,13 @@ TEST(HiddenEffects, EffortDriftAddsASlowOffset) {
                                          "experiment.depth_amplitude_m=0", "hidden_effects={}"};
   auto with = base;
   with.push_back(
-      "hidden_effects.effort_drift={\"drift1\":0.2,\"drift2\":-0.1,\"time_constant\":10}");
+      "hidden_effects.effort_drift={\"rate1\":0.02,\"rate2\":-0.01,\"settling_rate\":0.1}");
   const io::Log off = Simulate(Load("free_motion", base), 1).log;
   const io::Log on = Simulate(Load("free_motion", with), 1).log;
   const auto t = on.Column("t");
   for (const char* column : {"tau1", "tau2"}) {
     const auto a = off.Column(column), b = on.Column(column);
-    const double size = column[3] == '1' ? 0.2 : -0.1;
+    const double size = column[3] == '1' ? 0.2 : -0.1;  // rate / settling_rate, N·m
     for (double at : {5.0, 10.0, 20.0, 29.0}) {  // mean over 0.2 s around `at`
       double sum = 0.0;
       int n = 0;

@@ -61,12 +61,12 @@ TEST(Scenario, OverridesApplyBeforeTheChecks) {
   const Scenario s =
       ParseScenario(kMinimal, "x.json",
                     {"experiment.depths_m=[0.1]", "sensors.effort_noise_sd_nm=0",
-                     "log.mode=hold_means", "hidden_effects.effort_drift.drift1=0.1"});
+                     "log.mode=hold_means", "hidden_effects.effort_drift.rate1=0.001"});
   EXPECT_EQ(s.clamped_beam.depths_m, std::vector<double>{0.1});
   EXPECT_EQ(s.sensors.effort_noise_sd_nm, 0.0);
   EXPECT_EQ(s.log.mode, LogMode::kHoldMeans);
   ASSERT_EQ(s.hidden_effects.size(), 1u);
-  EXPECT_EQ(s.hidden_effects[0].parameters.at("drift1"), 0.1);
+  EXPECT_EQ(s.hidden_effects[0].parameters.at("rate1"), 0.001);
 }
 
 TEST(Scenario, UnknownKeyNamesItsLineAndTheAllowedKeys) {
