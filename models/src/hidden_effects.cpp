@@ -38,12 +38,12 @@ std::vector<ParameterSpec> JointInertiaCouplingEffect::Parameters() const {
 
 std::vector<ParameterSpec> EffortDriftEffect::Parameters() const {
   // The rate's prior: 0.3 N·m, about the PSM's whole bias torque, in five
-  // minutes. Thermal settling of motors and current sensors takes minutes, so
-  // 1/T is centred on 1/(10 min); 1/T = 0 (a linear creep) is inside half a
-  // prior sd of it.
+  // minutes. The settling rate 1/T has no preferred value from a linear creep
+  // (0) to settling within ten seconds (1/T = 0.1/s, one prior sd): a prior
+  // centred on minutes held a 20 s settling 14 sd away and biased the rate.
   return {{"rate1", "N·m/s", 0.0, -0.1, 0.1, 1e-3},
           {"rate2", "N·m/s", 0.0, -0.1, 0.1, 1e-3},
-          {"settling_rate", "1/s", 1.0 / 600.0, 0.0, 1.0, 1.0 / 300.0}};
+          {"settling_rate", "1/s", 0.0, 0.0, 1.0, 0.1}};
 }
 
 std::vector<ParameterSpec> BiasTorqueDepthEffect::Parameters() const {
