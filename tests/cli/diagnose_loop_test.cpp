@@ -51,8 +51,8 @@ TEST(DiagnoseLoop, TheWrittenParametersCorrectALogTheDiagnosisNeverSaw) {
   ASSERT_EQ(sim.exit_code, 0) << sim.err;
   // Measured: correct joint 1 2.65 -> 1.47, joint 2 1.82 -> 0.53 mrad; the
   // filter (the file's deflection effect in its measurement model,
-  // filter_deflection.cpp) joint 1 1.39 -> 1.07, joint 2 0.26 -> 0.14 mrad,
-  // the tip 0.154 -> 0.123 mm.
+  // filter_deflection.cpp) joint 1 1.39 -> 1.07, joint 2 0.26 -> 0.15 mrad,
+  // the tip 0.154 -> 0.124 mm.
   ExpectLoadedErrorFalls(dir, kCli, "correct", kParams, "with.json", 0.7);
   ExpectLoadedErrorFalls(dir, kCli, "filter", kParams, "with.json", 0.85);
 }
