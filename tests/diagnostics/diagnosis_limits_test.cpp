@@ -4,6 +4,7 @@
 // held-out gain against its closed form.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -133,6 +134,49 @@ TEST(DiagnoseLimits, ASegmentsGainIsTheLogOfItsSumOfSquaresRatio) {
   ASSERT_EQ(gain.size(), 2u);
   EXPECT_NEAR(gain[0], std::log(4.0), 1e-12);
   EXPECT_NEAR(gain[1], std::log(4.0), 1e-12);
+}
+
+// The third generator's test log, segment by segment (joints loaded, depth):
+// dealt in log order (g % 5) its three shallow joint-2 pushes shared fold 0,
+// whose training segments then held joint 2 at 0.200-0.211 m only. Dealt
+// stratified, every fold's training segments hold each joint at both ends of
+// its depths, and the folds stay within one segment of each other in size.
+TEST(DiagnoseLimits, FoldsAreDealtSoThatEveryTrainingSetSpansEachJointsDepths) {
+  struct Segment {
+    bool joint1, joint2;
+    double depth_m;
+  };
+  const std::vector<Segment> log = {
+      {false, true, 0.115}, {true, false, 0.115}, {true, false, 0.115}, {true, false, 0.123},
+      {true, false, 0.123}, {true, true, 0.123},  {true, false, 0.123}, {false, true, 0.200},
+      {true, false, 0.200}, {true, false, 0.200}, {true, true, 0.200},  {true, false, 0.211},
+      {true, true, 0.211},  {true, false, 0.211}, {true, false, 0.211}};
+  estimation::diagnosis::Problem problem;
+  problem.groups = int(log.size());
+  for (int g = 0; g < problem.groups; ++g) {
+    estimation::diagnosis::Sample s;
+    s.group = g;
+    s.used = {log[std::size_t(g)].joint1, log[std::size_t(g)].joint2};
+    s.state.insertion_depth_m = log[std::size_t(g)].depth_m;
+    problem.samples.push_back(s);
+  }
+  estimation::diagnosis::AssignFolds(5, &problem);
+  ASSERT_EQ(problem.folds, 5);
+  std::vector<int> size(5, 0);
+  for (int g = 0; g < problem.groups; ++g) ++size[std::size_t(problem.fold_of_group[std::size_t(g)])];
+  EXPECT_LE(*std::max_element(size.begin(), size.end()) - *std::min_element(size.begin(), size.end()), 1);
+  for (int fold = 0; fold < 5; ++fold) {
+    for (int j = 0; j < 2; ++j) {
+      double shallowest = 1.0, deepest = 0.0;
+      for (int g = 0; g < problem.groups; ++g) {
+        const Segment& seg = log[std::size_t(g)];
+        if (problem.fold_of_group[std::size_t(g)] == fold || !(j == 0 ? seg.joint1 : seg.joint2)) continue;
+        shallowest = std::min(shallowest, seg.depth_m), deepest = std::max(deepest, seg.depth_m);
+      }
+      EXPECT_LE(shallowest, 0.123) << "fold " << fold << " joint " << j + 1;
+      EXPECT_GE(deepest, 0.200) << "fold " << fold << " joint " << j + 1;
+    }
+  }
 }
 
 }  // namespace
