@@ -184,8 +184,8 @@ Problem BuildProblem(const io::Log& log, const std::string& log_path, const Base
                      const std::vector<Term>& added, const DiagnoseOptions& options);
 
 /// Sets problem->folds (≤ wanted, ≥ 2 where there are 2 groups) and deals the
-/// groups to them stratified: by the joints a group loads, then by depth, so
-/// every fold's training groups span each joint's depths.
+/// groups to them stratified: by the scarcest joint a group loads, then by
+/// depth, so every fold's training groups span each joint's depths.
 void AssignFolds(int wanted_folds, Problem* problem);
 
 /// Tip RMS (mm) of residuals over the samples where `keep(group)`, in the

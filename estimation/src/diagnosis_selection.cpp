@@ -6,6 +6,7 @@
 #include <cmath>
 #include <map>
 #include <numeric>
+#include <utility>
 
 #include "diagnosis_internal.h"
 
@@ -38,8 +39,9 @@ void AssignFolds(int wanted_folds, Problem* problem) {
   // Dealt in turn, the groups of a log that visits depths in order put every
   // shallow push of a joint in one fold: its training groups then hold that
   // joint at the deep end only, and a refit depth tilt extrapolates from
-  // there. A stratified deal (joints loaded, then depth) keeps each fold's
-  // held-out groups inside the depths its training groups span.
+  // there. Dealt stratified — a group by the scarcest joint it loads, then by
+  // depth — consecutive depths of each scarce joint go to different folds, so
+  // every fold's training groups hold it at (nearly) both ends of its depths.
   struct Key {
     int joints = 0;  ///< bit j: some sample loads joint j
     double depth_m = 0.0;
@@ -51,18 +53,26 @@ void AssignFolds(int wanted_folds, Problem* problem) {
     k.joints |= (s.used[0] ? 1 : 0) | (s.used[1] ? 2 : 0);
     k.depth_m += s.state.insertion_depth_m, ++k.samples;
   }
-  std::map<int, int> stratum_size;
-  for (Key& k : key) k.depth_m /= std::max(1, k.samples), ++stratum_size[k.joints];
+  int loading[2] = {0, 0};  // groups that load each joint
+  for (Key& k : key) {
+    k.depth_m /= std::max(1, k.samples);
+    for (int j = 0; j < 2; ++j) loading[j] += (k.joints >> j) & 1;
+  }
+  // The stratum: the joint with the fewest loading groups among those the
+  // group loads, as (that count, joint); groups that load none come last.
+  const auto stratum = [&](const Key& k) {
+    std::pair<int, int> best{problem->groups + 1, 2};
+    for (int j = 0; j < 2; ++j) {
+      if ((k.joints >> j) & 1) best = std::min(best, std::pair<int, int>{loading[j], j});
+    }
+    return best;
+  };
   std::vector<int> order(std::size_t(problem->groups));
   std::iota(order.begin(), order.end(), 0);
-  // The scarcest stratum first: its groups are the ones to spread.
   std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
     const Key &ka = key[std::size_t(a)], &kb = key[std::size_t(b)];
-    if (ka.joints != kb.joints) {
-      const int na = stratum_size[ka.joints], nb = stratum_size[kb.joints];
-      return na != nb ? na < nb : ka.joints < kb.joints;
-    }
-    return ka.depth_m < kb.depth_m;
+    const auto sa = stratum(ka), sb = stratum(kb);
+    return sa != sb ? sa < sb : ka.depth_m < kb.depth_m;
   });
   problem->folds = std::min(wanted_folds, problem->groups);
   problem->fold_of_group.assign(std::size_t(problem->groups), 0);
