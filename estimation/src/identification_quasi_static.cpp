@@ -200,7 +200,7 @@ WidthFits ProfiledFit(const std::vector<const IdentificationSample*>& samples, i
   const detail::WidthProfile profile = detail::ProfileWidths(search);
   out.profiled = best;
   out.profiled.log_width = profile.log_width[0];
-  out.profiled.width_above_floor = best.log_width > search.lower[0] + 0.1;  // 10 % above
+  out.profiled.width_above_floor = out.profiled.log_width > search.lower[0] + 0.1;  // 10 % above
   return out;
 }
 
