@@ -7,17 +7,23 @@
 // detection rate of that effect instead.
 //
 //   build/bench/diagnose_false_alarm_bench [--seeds 40] [--hidden 'NAME={"p":v}'] [--tip-fixed]
-//       [--check PARAMETER=TRUE_VALUE]
+//       [--check PARAMETER=TRUE_VALUE] [--redraw-design]
 //
 // --check: coverage of the fitted parameter's sd — how often the truth lies
 // within 1.96 sd of the hidden effect's fitted value (95 % if the sd is honest).
 // --tip-fixed: no tracker in the log; the reference is the held tip.
+// --redraw-design: each seed draws its own design and instrument (two depths
+// in 0.09–0.22 m, six push directions, a peak load of 0.7–1.3 N·m, K ×0.7–1.3
+// and a clearance of 3–12 mrad per joint), so that the segments' misfit
+// against the model is redrawn with the noise: the spread a sandwich over
+// segments claims.
 //
 // Not a Google Benchmark: a statistical study, run by hand (docs/diagnose-method.md).
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <map>
+#include <random>
 #include <string>
 
 #include <boost/math/distributions/beta.hpp>
@@ -25,13 +31,40 @@
 #include "../tests/diagnostics/diagnosis_support.h"
 #include "pliant/estimation/diagnosis.h"
 
+namespace {
+
+// One drawn design and instrument (--redraw-design): the experiment's
+// overrides, then K and the clearance of the truth the log and the model share.
+pliant::experiments::Scenario DrawnScenario(const std::string& hidden, int seed, bool tip_fixed) {
+  std::mt19937_64 rng(std::uint64_t(seed) * 7919u + 17u);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  auto draw = [&](double lo, double hi) { return lo + (hi - lo) * unit(rng); };
+  std::string directions = "[";
+  for (int k = 0; k < 6; ++k) directions += (k ? "," : "") + std::to_string(draw(0.0, 360.0));
+  auto scenario = pliant::testing::ShortDivot(
+      hidden, {"experiment.depths_m=[" + std::to_string(draw(0.09, 0.15)) + "," +
+                   std::to_string(draw(0.16, 0.22)) + "]",
+               "experiment.directions_deg=" + directions + "]",
+               "experiment.peak_torques_nm=[" + std::to_string(draw(0.7, 1.3)) + "]",
+               tip_fixed ? "sensors.tracker=false" : "sensors.tracker=true"});
+  for (auto& joint : scenario.truth.joints) {
+    pliant::models::ScaleCompliance(joint.compliance, draw(0.7, 1.3));
+    joint.backlash_rad = draw(0.003, 0.012);
+  }
+  return scenario;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   int seeds = 40;
   std::string hidden = "{}", expected;
   bool tip_fixed = false;
   std::string checked;
   double true_value = 0.0;
+  bool redraw = false;
   for (int i = 1; i < argc; ++i) tip_fixed |= !std::strcmp(argv[i], "--tip-fixed");
+  for (int i = 1; i < argc; ++i) redraw |= !std::strcmp(argv[i], "--redraw-design");
   for (int i = 1; i + 1 < argc; ++i) {
     if (!std::strcmp(argv[i], "--seeds")) seeds = std::atoi(argv[i + 1]);
     if (!std::strcmp(argv[i], "--check")) {
@@ -46,14 +79,16 @@ int main(int argc, char** argv) {
       hidden = "{\"" + expected + "\":" + arg.substr(eq + 1) + "}";
     }
   }
-  const auto scenario = pliant::testing::ShortDivot(
+  const auto fixed_scenario = pliant::testing::ShortDivot(
       hidden, {tip_fixed ? "sensors.tracker=false" : "sensors.tracker=true"});
-  const auto model = pliant::testing::ModelOf(scenario);
   int called = 0, right = 0, covered = 0, checks = 0;
   double sum_z2 = 0.0;
   std::map<std::string, int> best_counts;
   double worst_score = -1.0;
   for (int run = 0; run < seeds; ++run) {
+    const auto scenario =
+        redraw ? DrawnScenario(hidden, 1000 + run, tip_fixed) : fixed_scenario;
+    const auto model = pliant::testing::ModelOf(scenario);
     const auto log = pliant::experiments::Simulate(scenario, 1000 + run).log;
     const auto d = pliant::estimation::Diagnose(log, "divot.csv", model, {});
     const auto& best = d.effects.front();

@@ -7,6 +7,7 @@
 #include <iterator>
 #include <set>
 
+#include "clustered_sandwich.h"
 #include "diagnosis_internal.h"
 #include "pliant/estimation/free_motion_fit.h"
 #include "pliant/estimation/filter_log.h"
@@ -109,7 +110,7 @@ CandidateFit EvaluateCandidate(const Problem& problem, const BaseModel& model,
   // In-sample fit for the information criteria, the parameters and the size.
   const std::vector<bool> all(problem.groups, true);
   const auto fit = diagnosis::FitTerms(problem, model, fixed,
-                                       diagnosis::WithRefit(problem, {candidate}), all, true, 1.0);
+                                       diagnosis::WithRefit(problem, {candidate}), all, true, 1.0, true);
   std::vector<Term> with = fixed;  // the fixed terms and the refit as fitted with it
   std::vector<Term> refit = problem.refit;
   for (std::size_t t = 0; t < refit.size(); ++t) refit[t].parameters = fit.parameters[t];
@@ -131,13 +132,16 @@ CandidateFit EvaluateCandidate(const Problem& problem, const BaseModel& model,
   f.delta_bic = n_eff * log_ratio + k * std::log(n_eff);
 
   f.parameters = fitted.parameters;
-  for (double sd : fit.parameter_sd.back()) f.parameter_sd.push_back(sd / std::sqrt(factor));
   for (const auto& spec : candidate.effect->Parameters()) f.parameter_names.push_back(spec.name);
+  // The segments' sandwich, never below the white covariance scaled by the
+  // residual's effective size: both count correlated rows once.
   const Eigen::Index m = Eigen::Index(candidate.parameters.size());
   const Eigen::MatrixXd covariance =
       fit.covariance.rows() >= m
-          ? Eigen::MatrixXd(fit.covariance.bottomRightCorner(m, m) / factor)
+          ? detail::NotBelow(fit.covariance.bottomRightCorner(m, m),
+                             fit.white_covariance.bottomRightCorner(m, m) / factor)
           : Eigen::MatrixXd::Zero(m, m);
+  for (Eigen::Index k = 0; k < m; ++k) f.parameter_sd.push_back(std::sqrt(std::max(0.0, covariance(k, k))));
   // Size: what the candidate (with the refit as fitted with it) changes in the
   // baseline's residual; its σ from the candidate's own parameters.
   const auto size = diagnosis::ContributionSizeMm(problem, model, base, fitted, covariance);

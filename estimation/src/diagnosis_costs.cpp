@@ -324,6 +324,7 @@ FitResult FitTerms(const Problem& problem, const BaseModel& model, const std::ve
       const double n = double(2 * samples.size());
       const double dispersion = std::max(1.0, 2.0 * summary.final_cost / std::max(1.0, n - total));
       result.covariance = c * dispersion / size_factor;
+      result.white_covariance = result.covariance;
       if (clustered) result.covariance = ClusteredBySegment(problem, samples, &ceres_problem, blocks,
                                                             residual_block, result.covariance);
       result.covariance_ok = true;

@@ -228,6 +228,7 @@ struct FitResult {
   std::vector<std::vector<double>> parameter_sd;
   bool covariance_ok = false;
   Eigen::MatrixXd covariance;  ///< over all fitted parameters, term by term
+  Eigen::MatrixXd white_covariance;  ///< the same, rows taken as independent (before `clustered`)
 };
 
 /// Least squares of the standardised residual over the samples of groups
