@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/QR>
 #include <Eigen/SparseCholesky>
 #include <ceres/crs_matrix.h>
 
@@ -69,6 +70,43 @@ SandwichCovariance ClusteredSandwich(const Eigen::SparseMatrix<double>& jacobian
     for (auto* c : {&out.clustered, &out.model})
       c->row(Eigen::Index(i)).setZero(), c->col(Eigen::Index(i)).setZero();
   }
+  return out;
+}
+
+SandwichCovariance JackknifeSandwich(const Eigen::SparseMatrix<double>& jacobian,
+                                     const Eigen::VectorXd& residuals,
+                                     const std::vector<int>& cluster_of_row) {
+  if (Eigen::Index(cluster_of_row.size()) != jacobian.rows() || residuals.size() != jacobian.rows())
+    throw std::invalid_argument("JackknifeSandwich: one cluster label and residual per row");
+  const Eigen::MatrixXd j = jacobian;
+  const Eigen::Index n = j.cols();
+  SandwichCovariance out;
+  out.rows = j.rows(), out.columns = n;
+  out.residual_square_sum = residuals.squaredNorm();
+  out.clusters = 1 + *std::max_element(cluster_of_row.begin(), cluster_of_row.end());
+  std::vector<Eigen::MatrixXd> information(std::size_t(std::max(out.clusters, 0)), Eigen::MatrixXd::Zero(n, n));
+  Eigen::MatrixXd scores = Eigen::MatrixXd::Zero(n, std::max(out.clusters, 0));
+  Eigen::MatrixXd model_information = Eigen::MatrixXd::Zero(n, n);
+  for (Eigen::Index r = 0; r < j.rows(); ++r) {
+    const int c = cluster_of_row[std::size_t(r)];
+    const Eigen::VectorXd row = j.row(r).transpose();
+    if (c < 0) { model_information += row * row.transpose(); continue; }
+    information[std::size_t(c)] += row * row.transpose();
+    scores.col(c) += row * residuals[r];
+  }
+  Eigen::MatrixXd h = model_information;
+  for (const auto& hc : information) h += hc;
+  const Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> all(h);
+  out.model = all.pseudoInverse();
+  Eigen::MatrixXd meat = Eigen::MatrixXd::Zero(n, n);
+  for (int c = 0; c < out.clusters; ++c) {
+    const Eigen::VectorXd shift =
+        Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd>(h - information[std::size_t(c)])
+            .solve(scores.col(c));
+    meat += shift * shift.transpose();
+  }
+  const double small_sample = out.clusters > 1 ? double(out.clusters - 1) / out.clusters : 1.0;
+  out.clustered = small_sample * meat + out.model * model_information * out.model;
   return out;
 }
 

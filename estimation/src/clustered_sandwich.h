@@ -41,6 +41,19 @@ SandwichCovariance ClusteredSandwich(const Eigen::SparseMatrix<double>& jacobian
                                      const std::vector<int>& cluster_of_row,
                                      const std::vector<Eigen::Index>& wanted);
 
+/// The cluster jackknife (CV3 of MacKinnon, Nielsen & Webb, J. Econometrics
+/// 2023) for a fit with few parameters and no per-cluster nuisance unknowns:
+/// each cluster's leave-one-out shift, one Gauss–Newton step
+/// d_c = (H − H_c)⁻¹ g_c, and Cov = (c−1)/c Σ_c d_c d_cᵀ + H⁻¹ J_mᵀ J_m H⁻¹.
+/// The Liang–Zeger form solves with all of H; when a few clusters hold most
+/// of a parameter's information (a push direction drawn once), their own
+/// rows pull the fit toward them, their residuals shrink and it is too
+/// small. Dropping the cluster undoes that. A cluster whose removal leaves H
+/// singular counts with the pseudo-inverse.
+SandwichCovariance JackknifeSandwich(const Eigen::SparseMatrix<double>& jacobian,
+                                     const Eigen::VectorXd& residuals,
+                                     const std::vector<int>& cluster_of_row);
+
 /// The blocking method (Flyvbjerg & Petersen, J. Chem. Phys. 1989): a
 /// cluster must outlast the errors' correlation, which the residual's own
 /// autocorrelation understates when white noise hides a slow misfit. The

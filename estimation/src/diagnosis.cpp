@@ -133,7 +133,7 @@ CandidateFit EvaluateCandidate(const Problem& problem, const BaseModel& model,
 
   f.parameters = fitted.parameters;
   for (const auto& spec : candidate.effect->Parameters()) f.parameter_names.push_back(spec.name);
-  // The segments' sandwich, never below the white covariance scaled by the
+  // The segments' jackknife, never below the white covariance scaled by the
   // residual's effective size: both count correlated rows once.
   const Eigen::Index m = Eigen::Index(candidate.parameters.size());
   const Eigen::MatrixXd covariance =

@@ -236,8 +236,10 @@ class BaseRecalibration {
 };
 
 // The rows of one segment (a push, a clamp) share what the model lacks: the
-// clustered sandwich counts each segment as one draw, never below `floor`
-// (the white-noise covariance; estimation/src/clustered_sandwich.h).
+// cluster jackknife counts each segment as one draw, never below `floor`
+// (the white-noise covariance). A short log holds a dozen segments, a few of
+// which carry most of an effect's information: JackknifeSandwich in
+// estimation/src/clustered_sandwich.h says why not the Liang–Zeger form.
 Eigen::MatrixXd ClusteredBySegment(const Problem& problem, const std::vector<std::size_t>& samples,
                                    ceres::Problem* ceres_problem, const std::vector<double*>& blocks,
                                    ceres::ResidualBlockId residual_block,
@@ -254,10 +256,8 @@ Eigen::MatrixXd ClusteredBySegment(const Problem& problem, const std::vector<std
   for (std::size_t i = 0; i < samples.size(); ++i) {
     for (int j = 0; j < 2; ++j) cluster_of_row[2 * i + std::size_t(j)] = problem.samples[samples[i]].group;
   }
-  std::vector<Eigen::Index> wanted;
-  for (Eigen::Index k = 0; k < floor.rows(); ++k) wanted.push_back(k);
   try {
-    const auto sandwich = detail::ClusteredSandwich(jacobian, residuals, cluster_of_row, wanted);
+    const auto sandwich = detail::JackknifeSandwich(jacobian, residuals, cluster_of_row);
     if (sandwich.clusters < 2 || !sandwich.clustered.allFinite()) return floor;
     return detail::NotBelow(sandwich.clustered, floor);
   } catch (const std::runtime_error&) {

@@ -235,8 +235,9 @@ struct FitResult {
 /// where `train_group`, with `fixed` terms in the model and `fitted` terms'
 /// parameters free (bounds and Gaussian priors of their ParameterSpecs).
 /// Covariance (when `covariance`) is scaled by 1/effective-size factor;
-/// `clustered`: a sandwich with each CV group (segment) as one draw, never
-/// below the white-noise covariance (the rows of one push are correlated).
+/// `clustered`: the cluster jackknife with each CV group (segment) as one
+/// draw, never below the white-noise covariance (the rows of one push are
+/// correlated; docs/decisions/diagnosis-sd-by-segment-jackknife.md).
 FitResult FitTerms(const Problem& problem, const BaseModel& model, const std::vector<Term>& fixed,
                    const std::vector<Term>& fitted, const std::vector<bool>& train_group,
                    bool covariance, double size_factor, bool clustered = false);
