@@ -35,22 +35,29 @@ namespace {
 
 // One drawn design and instrument (--redraw-design): the experiment's
 // overrides, then K and the clearance of the truth the log and the model share.
-pliant::experiments::Scenario DrawnScenario(const std::string& hidden, int seed, bool tip_fixed) {
+pliant::experiments::Scenario DrawnScenario(const std::string& hidden, int seed, bool tip_fixed,
+                                            std::string* summary) {
   std::mt19937_64 rng(std::uint64_t(seed) * 7919u + 17u);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   auto draw = [&](double lo, double hi) { return lo + (hi - lo) * unit(rng); };
   std::string directions = "[";
   for (int k = 0; k < 6; ++k) directions += (k ? "," : "") + std::to_string(draw(0.0, 360.0));
+  const double shallow = draw(0.09, 0.15), deep = draw(0.16, 0.22), peak = draw(0.7, 1.3);
   auto scenario = pliant::testing::ShortDivot(
-      hidden, {"experiment.depths_m=[" + std::to_string(draw(0.09, 0.15)) + "," +
-                   std::to_string(draw(0.16, 0.22)) + "]",
+      hidden, {"experiment.depths_m=[" + std::to_string(shallow) + "," + std::to_string(deep) + "]",
                "experiment.directions_deg=" + directions + "]",
-               "experiment.peak_torques_nm=[" + std::to_string(draw(0.7, 1.3)) + "]",
+               "experiment.peak_torques_nm=[" + std::to_string(peak) + "]",
                tip_fixed ? "sensors.tracker=false" : "sensors.tracker=true"});
-  for (auto& joint : scenario.truth.joints) {
-    pliant::models::ScaleCompliance(joint.compliance, draw(0.7, 1.3));
-    joint.backlash_rad = draw(0.003, 0.012);
+  char text[160];
+  int length = std::snprintf(text, sizeof text, "depths %.3f/%.3f m, peak %.2f N·m", shallow, deep, peak);
+  for (std::size_t j = 0; j < 2; ++j) {
+    const double scale = draw(0.7, 1.3), clearance = draw(0.003, 0.012);
+    pliant::models::ScaleCompliance(scenario.truth.joints[j].compliance, scale);
+    scenario.truth.joints[j].backlash_rad = clearance;
+    length += std::snprintf(text + length, sizeof text - std::size_t(length), ", joint %zu K x%.2f δ %.1f mrad",
+                            j + 1, scale, 1e3 * clearance);
   }
+  *summary = text;
   return scenario;
 }
 
@@ -86,8 +93,10 @@ int main(int argc, char** argv) {
   std::map<std::string, int> best_counts;
   double worst_score = -1.0;
   for (int run = 0; run < seeds; ++run) {
+    std::string design;
     const auto scenario =
-        redraw ? DrawnScenario(hidden, 1000 + run, tip_fixed) : fixed_scenario;
+        redraw ? DrawnScenario(hidden, 1000 + run, tip_fixed, &design) : fixed_scenario;
+    if (redraw) std::printf("seed %4d  %s\n", 1000 + run, design.c_str());
     const auto model = pliant::testing::ModelOf(scenario);
     const auto log = pliant::experiments::Simulate(scenario, 1000 + run).log;
     const auto d = pliant::estimation::Diagnose(log, "divot.csv", model, {});
