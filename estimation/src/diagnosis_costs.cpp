@@ -316,6 +316,7 @@ FitResult FitTerms(const Problem& problem, const BaseModel& model, const std::ve
   int total = 0;
   for (const auto& values : result.parameters) total += int(values.size());
   result.covariance = Eigen::MatrixXd::Zero(total, total);
+  result.white_covariance = result.covariance;  // both stay zero if Ceres cannot invert
   if (ceres_covariance.Compute(const_blocks, &ceres_problem)) {
     Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> c(total, total);
     if (ceres_covariance.GetCovarianceMatrix(const_blocks, c.data())) {
