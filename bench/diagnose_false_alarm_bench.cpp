@@ -7,7 +7,8 @@
 // detection rate of that effect instead.
 //
 //   build/bench/diagnose_false_alarm_bench [--seeds 40] [--hidden 'NAME={"p":v}'] [--tip-fixed]
-//       [--check PARAMETER=TRUE_VALUE] [--redraw-design]
+//       [--check PARAMETER=TRUE_VALUE] [--redraw-design] [--set KEY=JSON ...]
+//       [--write DIR]
 //
 // --check: coverage of the fitted parameter's sd — how often the truth lies
 // within 1.96 sd of the hidden effect's fitted value (95 % if the sd is honest).
@@ -17,6 +18,12 @@
 // and a clearance of 3–12 mrad per joint), so that the segments' misfit
 // against the model is redrawn with the noise: the spread a sandwich over
 // segments claims.
+// --set: a scenario override applied to every seed after the design's (as
+// `pliant simulate --set`), e.g. --set truth.tip.shaft_damping_nm_s_per_rad=0 to
+// see what one physical detail of the simulator adds to the misfit.
+// --write: each seed's log and the model it is diagnosed with, as
+// DIR/seed_N.csv and DIR/seed_N.json, so that a case can be re-run with
+// `pliant diagnose --params DIR/seed_N.json DIR/seed_N.csv`.
 //
 // Not a Google Benchmark: a statistical study, run by hand (docs/diagnose-method.md).
 #include <cstdio>
@@ -25,17 +32,21 @@
 #include <map>
 #include <random>
 #include <string>
+#include <vector>
 
 #include <boost/math/distributions/beta.hpp>
 
 #include "../tests/diagnostics/diagnosis_support.h"
 #include "pliant/estimation/diagnosis.h"
+#include "pliant/io/log_writer.h"
+#include "pliant/io/parameters_json.h"
 
 namespace {
 
 // One drawn design and instrument (--redraw-design): the experiment's
 // overrides, then K and the clearance of the truth the log and the model share.
 pliant::experiments::Scenario DrawnScenario(const std::string& hidden, int seed, bool tip_fixed,
+                                            const std::vector<std::string>& sets,
                                             std::string* summary) {
   std::mt19937_64 rng(std::uint64_t(seed) * 7919u + 17u);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
@@ -43,11 +54,13 @@ pliant::experiments::Scenario DrawnScenario(const std::string& hidden, int seed,
   std::string directions = "[";
   for (int k = 0; k < 6; ++k) directions += (k ? "," : "") + std::to_string(draw(0.0, 360.0));
   const double shallow = draw(0.09, 0.15), deep = draw(0.16, 0.22), peak = draw(0.7, 1.3);
-  auto scenario = pliant::testing::ShortDivot(
-      hidden, {"experiment.depths_m=[" + std::to_string(shallow) + "," + std::to_string(deep) + "]",
-               "experiment.directions_deg=" + directions + "]",
-               "experiment.peak_torques_nm=[" + std::to_string(peak) + "]",
-               tip_fixed ? "sensors.tracker=false" : "sensors.tracker=true"});
+  std::vector<std::string> overrides = {
+      "experiment.depths_m=[" + std::to_string(shallow) + "," + std::to_string(deep) + "]",
+      "experiment.directions_deg=" + directions + "]",
+      "experiment.peak_torques_nm=[" + std::to_string(peak) + "]",
+      tip_fixed ? "sensors.tracker=false" : "sensors.tracker=true"};
+  overrides.insert(overrides.end(), sets.begin(), sets.end());
+  auto scenario = pliant::testing::ShortDivot(hidden, overrides);
   char text[160];
   int length = std::snprintf(text, sizeof text, "depths %.3f/%.3f m, peak %.2f N·m", shallow, deep, peak);
   for (std::size_t j = 0; j < 2; ++j) {
@@ -67,13 +80,16 @@ int main(int argc, char** argv) {
   int seeds = 40;
   std::string hidden = "{}", expected;
   bool tip_fixed = false;
-  std::string checked;
+  std::string checked, write_dir;
   double true_value = 0.0;
   bool redraw = false;
+  std::vector<std::string> sets;
   for (int i = 1; i < argc; ++i) tip_fixed |= !std::strcmp(argv[i], "--tip-fixed");
   for (int i = 1; i < argc; ++i) redraw |= !std::strcmp(argv[i], "--redraw-design");
   for (int i = 1; i + 1 < argc; ++i) {
     if (!std::strcmp(argv[i], "--seeds")) seeds = std::atoi(argv[i + 1]);
+    if (!std::strcmp(argv[i], "--set")) sets.push_back(argv[i + 1]);
+    if (!std::strcmp(argv[i], "--write")) write_dir = argv[i + 1];
     if (!std::strcmp(argv[i], "--check")) {
       const std::string arg = argv[i + 1];
       checked = arg.substr(0, arg.find('='));
@@ -86,8 +102,10 @@ int main(int argc, char** argv) {
       hidden = "{\"" + expected + "\":" + arg.substr(eq + 1) + "}";
     }
   }
-  const auto fixed_scenario = pliant::testing::ShortDivot(
-      hidden, {tip_fixed ? "sensors.tracker=false" : "sensors.tracker=true"});
+  std::vector<std::string> fixed_overrides = {tip_fixed ? "sensors.tracker=false"
+                                                         : "sensors.tracker=true"};
+  fixed_overrides.insert(fixed_overrides.end(), sets.begin(), sets.end());
+  const auto fixed_scenario = pliant::testing::ShortDivot(hidden, fixed_overrides);
   int called = 0, right = 0, covered = 0, checks = 0;
   double sum_z2 = 0.0;
   std::map<std::string, int> best_counts;
@@ -95,10 +113,15 @@ int main(int argc, char** argv) {
   for (int run = 0; run < seeds; ++run) {
     std::string design;
     const auto scenario =
-        redraw ? DrawnScenario(hidden, 1000 + run, tip_fixed, &design) : fixed_scenario;
+        redraw ? DrawnScenario(hidden, 1000 + run, tip_fixed, sets, &design) : fixed_scenario;
     if (redraw) std::printf("seed %4d  %s\n", 1000 + run, design.c_str());
     const auto model = pliant::testing::ModelOf(scenario);
     const auto log = pliant::experiments::Simulate(scenario, 1000 + run).log;
+    if (!write_dir.empty()) {
+      const std::string stem = write_dir + "/seed_" + std::to_string(1000 + run);
+      pliant::io::WriteLog(stem + ".csv", log);
+      pliant::io::WriteParameters(stem + ".json", model);
+    }
     const auto d = pliant::estimation::Diagnose(log, "divot.csv", model, {});
     const auto& best = d.effects.front();
     for (const auto& f : d.effects) {
