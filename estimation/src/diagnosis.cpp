@@ -9,8 +9,8 @@
 
 #include "clustered_sandwich.h"
 #include "diagnosis_internal.h"
+#include "diagnosis_summary.h"
 #include "pliant/estimation/free_motion_fit.h"
-#include "pliant/estimation/filter_log.h"
 #include "pliant/estimation/jacobian_check.h"
 #include "pliant/io/input_error.h"
 
@@ -20,68 +20,6 @@ namespace {
 using diagnosis::Problem;
 using diagnosis::Term;
 using Residual = std::vector<Eigen::Vector2d>;
-
-// Standardised residual entries of the used joints, joint 1's run then joint 2's.
-struct Standardised {
-  std::vector<double> value;
-  std::vector<int> run;
-};
-Standardised Standardise(const Problem& problem, const Residual& r) {
-  Standardised out;
-  for (int j = 0; j < 2; ++j) {
-    for (std::size_t i = 0; i < r.size(); ++i) {
-      if (!problem.samples[i].used[j]) continue;
-      out.value.push_back(r[i][j] / problem.noise_sd_rad[j]);
-      out.run.push_back(2 * problem.samples[i].group + j);
-    }
-  }
-  return out;
-}
-
-double SumOfSquares(const std::vector<double>& x) {
-  double s = 0.0;
-  for (double v : x) s += v * v;
-  return s;
-}
-
-ResidualStatistics Statistics(const Problem& problem, const Residual& r, const DiagnoseOptions& o) {
-  ResidualStatistics s;
-  s.samples = r.size();
-  s.rms_mm = diagnosis::TipRmsMm(problem, r);
-  for (int j = 0; j < 2; ++j) {
-    double sum = 0.0, square = 0.0, n = 0.0;
-    for (std::size_t i = 0; i < r.size(); ++i) {
-      if (!problem.samples[i].used[j]) continue;
-      sum += r[i][j], square += r[i][j] * r[i][j], n += 1.0;
-    }
-    s.bias_rad[j] = n > 0.0 ? sum / n : 0.0;
-    s.rms_rad[j] = n > 0.0 ? std::sqrt(square / n) : 0.0;
-  }
-  const Standardised z = Standardise(problem, r);
-  const auto lb = diagnosis::LjungBox(z.value, o.ljung_box_lags);
-  const auto jb = diagnosis::JarqueBera(z.value);
-  s.ljung_box_q = lb.statistic, s.ljung_box_p = lb.p_value;
-  s.normality_statistic = jb.statistic, s.normality_p = jb.p_value;
-  return s;
-}
-
-// The filter's NIS over the compared rows (it runs over every row in order).
-void AddFilterNis(const io::Log& log, const models::ModelParameters& parameters,
-                  const DiagnoseOptions& options, const Problem& problem, ResidualStatistics& s) {
-  ComplianceFilter filter(parameters, options.filter);
-  const io::StandardColumns columns(log.header);
-  std::vector<bool> compared(log.Rows(), false);
-  for (const auto& sample : problem.samples) compared[sample.row] = true;
-  double nis = 0.0, dof = 0.0;
-  for (std::size_t r = 0; r < log.Rows(); ++r) {
-    const FilterEstimate e = filter.Step(
-        SampleFromRow(columns, &log.values[r * log.Columns()], options.filter.fuse_log_reference));
-    if (compared[r] && e.nis_dof > 0) nis += e.nis, dof += e.nis_dof;
-  }
-  s.mean_nis = dof > 0.0 ? nis / dof : 0.0;
-  const auto band = diagnosis::ChiSquaredMeanBand(dof);
-  s.nis_band[0] = band[0], s.nis_band[1] = band[1];
-}
 
 }  // namespace
 
@@ -119,14 +57,14 @@ CandidateFit EvaluateCandidate(const Problem& problem, const BaseModel& model,
   Term fitted = candidate;
   fitted.parameters = fit.parameters.back();
   with.push_back(fitted);
-  const Standardised z0 = Standardise(problem, before);
-  const Standardised z1 = Standardise(problem, diagnosis::Residuals(problem, model, with));
+  const diagnosis::Standardised z0 = diagnosis::Standardise(problem, before);
+  const diagnosis::Standardised z1 = diagnosis::Standardise(problem, diagnosis::Residuals(problem, model, with));
   // Effective size from the residual left with the effect in: under the null
   // it is what the noise is; a wrong candidate leaves it correlated.
   const double factor = diagnosis::EffectiveSizeFactor(z1.value, z1.run);
   const double n_eff = std::max(2.0, factor * double(z1.value.size()));
   const double k = double(candidate.parameters.size());
-  const double rss0 = SumOfSquares(z0.value), rss1 = std::max(1e-300, SumOfSquares(z1.value));
+  const double rss0 = diagnosis::SumOfSquares(z0.value), rss1 = std::max(1e-300, diagnosis::SumOfSquares(z1.value));
   const double log_ratio = std::log(rss1 / std::max(rss0, 1e-300));
   f.delta_aic = n_eff * log_ratio + 2.0 * k;
   f.delta_bic = n_eff * log_ratio + k * std::log(n_eff);
@@ -376,10 +314,10 @@ Diagnosis Diagnose(const io::Log& log, const std::string& log_path,
   // reads where it changes fast, is smaller in one.
   d.noise_floor_mm = std::min(diagnosis::NoiseFloorMm(problem, heldout_before),
                               diagnosis::NoiseFloorMm(problem, after));
-  d.before = Statistics(problem, before, options);
-  d.after = Statistics(problem, after, options);
+  d.before = diagnosis::Summarise(problem, before, options);
+  d.after = diagnosis::Summarise(problem, after, options);
   if (problem.joint_recorded[0] && problem.joint_recorded[1]) {
-    AddFilterNis(log, parameters, options, problem, d.before);
+    diagnosis::AddFilterNis(log, parameters, options, problem, d.before);
   } else {
     d.notes.push_back("the filter's NIS is not computed: it needs both joints recorded");
   }
