@@ -25,7 +25,7 @@ CASES = [
     ("joint_friction", '{"coulomb1":0.05,"coulomb2":0.05}', []),
     ("effort_drift", '{"rate1":0.0025,"rate2":-0.0025,"settling_rate":0.05}', []),
     ("bias_torque_depth", '{"slope1":0.8,"slope2":-0.8}', []),
-    ("load_dependent_compliance", '{"gamma1":0.004,"gamma2":0.004}', []),
+    ("load_dependent_compliance", '{"gamma1":0.07,"gamma2":0.11}', []),
     ("deflection_coupling", '{"k12":0.004,"k21":-0.004}', []),
     ("backlash_depth", '{"growth1":0.05,"growth2":0.05}', []),
     ("bias_torque_cross_joint", '{"cross1":0.15,"cross2":0.15}', []),

@@ -198,24 +198,35 @@ class BaseRecalibration {
     }
     return specs;
   }
+  /// K_j(L) as refitted, (1 + s_j)·K_j(L) tilted by u_j (rad/(N·m)).
   template <typename T>
-  models::Vec2<T> operator()(const T* p, const models::JointState<T>& state) const {
-    using std::exp;
-    using std::tanh;
+  models::Vec2<T> Compliance(const T* p, double depth_m) const {
     models::Vec2<T> out;
     for (int j = 0; j < 2; ++j) {
       const auto& joint = model_->parameters().joints[j];
       // The law is read at the depth clamped to its range, as ComplianceAt does.
-      const double depth =
-          std::clamp(ValueOf(state.insertion_depth_m), joint.depth_min_m, joint.depth_max_m);
+      const double depth = std::clamp(depth_m, joint.depth_min_m, joint.depth_max_m);
       const double k = models::ComplianceAt(joint, depth);
       const double per_tilt = per_tilt_[j][2] * depth + per_tilt_[j][3];
       const T u = kind_ != Recalibration::kScale ? p[4 + j] : T(0.0);
       const T tilted = joint.compliance.form == models::ComplianceForm::kInverseCubic
                            ? T(1.0) / (T(1.0 / k) + u * per_tilt)
                            : T(k) + u * per_tilt;
+      out[j] = (T(1.0) + p[j]) * tilted;
+    }
+    return out;
+  }
+  template <typename T>
+  models::Vec2<T> operator()(const T* p, const models::JointState<T>& state) const {
+    using std::exp;
+    using std::tanh;
+    const models::Vec2<T> refitted = Compliance(p, ValueOf(state.insertion_depth_m));
+    models::Vec2<T> out;
+    for (int j = 0; j < 2; ++j) {
+      const auto& joint = model_->parameters().joints[j];
+      const double k = models::ComplianceAt(joint, ValueOf(state.insertion_depth_m));
       const T& tau = state.external_torque_nm[j];
-      out[j] = ((T(1.0) + p[j]) * tilted - T(k)) * tau;
+      out[j] = (refitted[j] - T(k)) * tau;
       const double w = model_->clearance_load_nm(j);
       if (kind_ == Recalibration::kTakeUp || kind_ == Recalibration::kNarrowTakeUp) {
         // The model's dead zone replaced by one of clearance δ + d_j and width w·e^l_j.
@@ -268,8 +279,16 @@ Eigen::MatrixXd ClusteredBySegment(const Problem& problem, const std::vector<std
 }  // namespace
 
 Term BaseRecalibrationTerm(const BaseModel& model, Recalibration kind) {
-  std::shared_ptr<const EffectModel> effect = MakeEffectModel(BaseRecalibration(model, kind));
-  return {effect, effect->DefaultParameters(), "base_recalibration"};
+  const BaseRecalibration recalibration(model, kind);
+  std::shared_ptr<const EffectModel> effect = MakeEffectModel(recalibration);
+  Term term{effect, effect->DefaultParameters(), "base_recalibration", {}, {}};
+  term.compliance = [recalibration](const double* p, double depth_m) {
+    return Eigen::Vector2d(recalibration.Compliance(p, depth_m));
+  };
+  term.compliance_jet = [recalibration](const EffectJet* p, double depth_m) {
+    return recalibration.Compliance(p, depth_m);
+  };
+  return term;
 }
 
 void SetRecalibration(const BaseModel& model, bool on, Problem* problem) {

@@ -104,6 +104,11 @@ BaseModel::BaseModel(const models::ModelParameters& parameters,
   }
 }
 
+Eigen::Vector2d BaseModel::ComplianceAt(double depth_m) const {
+  return {models::ComplianceAt(parameters_.joints[0], depth_m),
+          models::ComplianceAt(parameters_.joints[1], depth_m)};
+}
+
 namespace {
 
 // Which joints the log records: a joint whose angle or effort column holds no

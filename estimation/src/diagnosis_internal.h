@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <array>
 #include <cstddef>
+#include <functional>
 #include <memory>
 #include <string>
 #include <type_traits>
@@ -18,6 +19,7 @@
 #include <Eigen/Core>
 #include <ceres/problem.h>
 
+#include "diagnosis_statistics.h"
 #include "pliant/estimation/diagnosis.h"
 #include "pliant/estimation/effect_catalogue.h"
 #include "pliant/estimation/effect_fit.h"
@@ -44,6 +46,10 @@ struct Term {
   std::shared_ptr<const EffectModel> effect;
   std::vector<double> parameters;
   std::string name;
+  /// The base model's recalibration only: K_j(L) as it refits it (rad/(N·m)),
+  /// which the deflection effects that scale with the compliance then read.
+  std::function<Eigen::Vector2d(const double*, double)> compliance;
+  std::function<models::Vec2<EffectJet>(const EffectJet*, double)> compliance_jet;
 };
 
 /// The rows, their reference and the noise scale that standardises residuals.
@@ -110,6 +116,9 @@ class BaseModel {
   double compared_load_nm(int joint) const { return compared_load_nm_[joint]; }
   void set_compared_load_nm(int joint, double load_nm) { compared_load_nm_[joint] = load_nm; }
   const models::ModelParameters& parameters() const { return parameters_; }
+  /// K_j(L) of the parameters' law at `depth_m` (rad/(N·m)), which a deflection
+  /// effect reads as JointState::compliance_rad_per_nm.
+  Eigen::Vector2d ComplianceAt(double depth_m) const;
 
  private:
   template <typename T>
@@ -140,6 +149,15 @@ template <typename T>
 models::Vec2<T> ModelResidual(const Sample& sample, const BaseModel& model,
                               const std::vector<Term>& terms, const std::vector<const T*>& values) {
   models::JointState<T> state = sample.state.Cast<T>();
+  const double depth = sample.state.insertion_depth_m;
+  state.compliance_rad_per_nm = model.ComplianceAt(depth).cast<T>();
+  for (std::size_t i = 0; i < terms.size(); ++i) {
+    if constexpr (std::is_same_v<T, double>) {
+      if (terms[i].compliance) state.compliance_rad_per_nm = terms[i].compliance(values[i], depth);
+    } else {
+      if (terms[i].compliance_jet) state.compliance_rad_per_nm = terms[i].compliance_jet(values[i], depth);
+    }
+  }
   model.TakeOutInternalTorque(&state);
   for (std::size_t i = 0; i < terms.size(); ++i) {
     if (terms[i].effect->Info().channel == models::Channel::kInternalTorque)
@@ -188,39 +206,15 @@ Problem BuildProblem(const io::Log& log, const std::string& log_path, const Base
 /// depth, so every fold's training groups span each joint's depths.
 void AssignFolds(int wanted_folds, Problem* problem);
 
-/// Tip RMS (mm) of residuals over the samples where `keep(group)`, in the
-/// sense of sqrt(mean e1² + mean e2²) over each joint's used samples, each
-/// joint's residual first averaged over consecutive windows of
-/// Problem::rms_window_s (the model's error, with the sensors' white noise
-/// averaged out).
+/// Tip RMS (mm), sqrt(mean e1² + mean e2²) over each joint's used samples of the groups
+/// where `keep(group)`, each joint's residual first averaged over consecutive windows of
+/// Problem::rms_window_s (the model's error, the sensors' white noise averaged out).
 double TipRmsMm(const Problem& problem, const std::vector<Eigen::Vector2d>& residual,
                 const std::vector<bool>* keep_group = nullptr);
 /// What the sensors' white noise alone leaves in TipRmsMm (mm): its variance
 /// per sample, from the residual's steps between neighbouring samples, over
 /// each joint's samples per window.
 double NoiseFloorMm(const Problem& problem, const std::vector<Eigen::Vector2d>& residual);
-
-// --- statistics ---------------------------------------------------------------
-/// Lag-1 autocorrelation of a series cut into runs (a new run where `run`
-/// changes); the AR(1) effective-size factor (1 − ρ)/(1 + ρ), in [1/n, 1].
-double EffectiveSizeFactor(const std::vector<double>& x, const std::vector<int>& run);
-struct TestResult {
-  double statistic = 0.0;
-  double p_value = 1.0;
-};
-TestResult LjungBox(const std::vector<double>& x, int lags);
-TestResult JarqueBera(const std::vector<double>& x);
-/// Upper tail of F(d1, d2) at f.
-double FUpperTail(double f, double d1, double d2);
-/// One-sided test that a mean gain is positive, the blocks (held-out
-/// segments) taken as the independent units: Student's t on the per-block
-/// gains, g − 1 degrees of freedom. Rows within a segment are correlated;
-/// segments are what the cross-validation holds out, so they are the sample.
-TestResult BlockImprovementTest(const std::vector<double>& gain_per_block);
-/// Holm's step-down adjustment, in place.
-void HolmAdjust(std::vector<double>& p_values);
-/// Two-sided 95 % band of a mean of χ²/dof over `dof` degrees of freedom.
-std::array<double, 2> ChiSquaredMeanBand(double dof);
 
 // --- fitting -------------------------------------------------------------------
 struct FitResult {

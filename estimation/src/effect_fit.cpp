@@ -17,16 +17,17 @@ namespace diagnosis {
 
 Term MakeTerm(const std::string& name) {
   std::shared_ptr<const EffectModel> effect = EffectCatalogue::Global().Create(name);
-  return {effect, effect->DefaultParameters(), name};
+  return {effect, effect->DefaultParameters(), name, {}, {}};
 }
 
 // The log channels an effect reads: the inputs of the joint state its
 // contribution has a derivative with respect to (parameters moved one prior
 // sd off their defaults, at a light and a heavy load), in the log's names.
 std::vector<std::string> ChannelsOf(const EffectModel& effect) {
+  // K(L) is no column of the log: the model's law at the row's depth.
   static const char* kLogName[models::kJointStateSize] = {
       "q1", "q2", "q3", "tau1", "tau2", "v1", "v2", "t", "dtau1/dt", "dtau2/dt",
-      "travel1", "travel2", "d2q1/dt2", "d2q2/dt2"};
+      "travel1", "travel2", "d2q1/dt2", "d2q2/dt2", nullptr, nullptr};
   std::vector<double> parameters;
   for (const auto& spec : effect.Parameters()) {
     const double moved = spec.default_value + spec.prior_sd;
@@ -43,13 +44,14 @@ std::vector<std::string> ChannelsOf(const EffectModel& effect) {
     state.effort_rate_nm_s << 0.4, -0.7;
     state.travel_since_reversal_rad << 0.003, -0.001;
     state.acceleration_rad_s2 << 0.3, -0.2;
+    state.compliance_rad_per_nm << 0.05, 0.03;
     const auto check = CheckEffectJacobians(effect, parameters, state);
     for (int k = 0; k < models::kJointStateSize; ++k)
       used[k] = used[k] || check.autodiff.col(Eigen::Index(parameters.size()) + k).cwiseAbs().maxCoeff() > 0.0;
   }
   std::vector<std::string> channels;
   for (int k = 0; k < models::kJointStateSize; ++k) {
-    if (used[k]) channels.push_back(kLogName[k]);
+    if (used[k] && kLogName[k] != nullptr) channels.push_back(kLogName[k]);
   }
   return channels;
 }

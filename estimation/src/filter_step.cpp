@@ -66,6 +66,8 @@ void ComplianceFilter::Impl::ExtraInternalTorque(const FilterSample& sample) {
   // The acceleration the learned J·θ̈ reads (MotorMotion), as the state is aligned to it.
   if (!options.quasi_static)
     effect_inputs.acceleration_rad_s2 << motion[0].acceleration_rad_s2, motion[1].acceleration_rad_s2;
+  // The file's K(L), not s·K(L): the effects were fitted as shares of the law.
+  effect_inputs.compliance_rad_per_nm << ComplianceAtDepth(0), ComplianceAtDepth(1);
   extra_internal_torque_nm = extra_effects.InternalTorque(effect_inputs);
   extra_internal_variance_nm2 = extra_effects.ConsideredVariance(
       effect_inputs, models::Channel::kInternalTorque, &extra_learned_variance_nm2);

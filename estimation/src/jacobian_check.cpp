@@ -18,7 +18,8 @@ std::vector<T> Flatten(const JointState<T>& s) {
           s.velocity_rad_s[1],     s.time_s,                s.effort_rate_nm_s[0],
           s.effort_rate_nm_s[1],   s.travel_since_reversal_rad[0],
           s.travel_since_reversal_rad[1], s.acceleration_rad_s2[0],
-          s.acceleration_rad_s2[1]};
+          s.acceleration_rad_s2[1], s.compliance_rad_per_nm[0],
+          s.compliance_rad_per_nm[1]};
 }
 
 template <typename T>
@@ -32,6 +33,7 @@ JointState<T> Unflatten(const T* x) {
   s.effort_rate_nm_s << x[8], x[9];
   s.travel_since_reversal_rad << x[10], x[11];
   s.acceleration_rad_s2 << x[12], x[13];
+  s.compliance_rad_per_nm << x[14], x[15];
   return s;
 }
 
@@ -85,7 +87,8 @@ std::string InputName(const EffectModel& effect, int column) {
 const std::vector<std::string>& JointStateInputNames() {
   static const std::vector<std::string> names = {
       "q1", "q2", "insertion_depth_m", "external_torque1", "external_torque2", "v1", "v2", "t",
-      "effort_rate1", "effort_rate2", "travel1", "travel2", "a1", "a2"};
+      "effort_rate1", "effort_rate2", "travel1", "travel2", "a1", "a2", "compliance1",
+      "compliance2"};
   return names;
 }
 

@@ -41,7 +41,8 @@ std::vector<double> Sized(const estimation::EffectModel& effect, const HiddenEff
 
 TruthModel::TruthModel(const Scenario& scenario)
     : backlash_rad_(scenario.truth.joints[0].backlash_rad, scenario.truth.joints[1].backlash_rad),
-      centre_rad_(scenario.truth.backlash_centre_rad) {
+      centre_rad_(scenario.truth.backlash_centre_rad),
+      joints_{scenario.truth.joints[0], scenario.truth.joints[1]} {
   const Truth& truth = scenario.truth;
   auto add = [](std::vector<Term>& terms, std::unique_ptr<estimation::EffectModel> effect,
                 std::vector<double> parameters) {
@@ -78,6 +79,12 @@ TruthModel::TruthModel(const Scenario& scenario)
   }
 }
 
+// The truth's K(L) at the state's depth, for the deflection effects that scale with it.
+void TruthModel::WithCompliance(models::JointState<double>* state) const {
+  for (int j = 0; j < 2; ++j)
+    state->compliance_rad_per_nm[j] = models::ComplianceAt(joints_[j], state->insertion_depth_m);
+}
+
 TruthModel::~TruthModel() = default;
 TruthModel::TruthModel(TruthModel&&) noexcept = default;
 
@@ -101,7 +108,8 @@ Eigen::Matrix<double, 2, 4> TruthModel::InternalTorqueJacobian(
   return jacobian;
 }
 
-Eigen::Vector2d TruthModel::Deflection(const models::JointState<double>& state) const {
+Eigen::Vector2d TruthModel::Deflection(models::JointState<double> state) const {
+  WithCompliance(&state);
   Eigen::Vector2d sum = Eigen::Vector2d::Zero();
   for (const Term& term : deflection_) sum += term.effect->Evaluate(term.parameters.data(), state);
   return sum;
@@ -115,6 +123,7 @@ Eigen::Vector2d TruthModel::ShaftTorque(const Eigen::Vector2d& elastic_deflectio
   Eigen::Vector2d tau(contact[0] ? guess[0] : 0.0, contact[1] ? guess[1] : 0.0);
   if (d_torque_d_deflection) d_torque_d_deflection->setZero();
   if (!contact[0] && !contact[1]) return tau;
+  WithCompliance(&state);
   // Converged when the deflection matches to far below an encoder count.
   constexpr double kTolerance = 1e-13;
   for (int iteration = 0; iteration < 30; ++iteration) {

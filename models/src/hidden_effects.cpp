@@ -55,11 +55,12 @@ std::vector<ParameterSpec> BiasTorqueDepthEffect::Parameters() const {
 }
 
 std::vector<ParameterSpec> LoadDependentComplianceEffect::Parameters() const {
-  // At 1 N·m a gamma or a beta of 0.01 adds about 12-30 % to the paper's K(L).
-  return {{"gamma1", "rad/(N·m)^3", 0.0, -0.05, 0.05, 0.01},
-          {"gamma2", "rad/(N·m)^3", 0.0, -0.05, 0.05, 0.01},
-          {"beta1", "rad/(N·m)^2", 0.0, -0.05, 0.05, 0.01},
-          {"beta2", "rad/(N·m)^2", 0.0, -0.05, 0.05, 0.01}};
+  // Shares of K(L): at 1 N·m a beta of −0.25 takes a quarter off the bend (a
+  // stiffening K/(1 + 0.25·|tau|)); at −0.5 the incremental compliance is 0.
+  return {{"gamma1", "1/(N·m)^2", 0.0, -1.0, 1.0, 0.25},
+          {"gamma2", "1/(N·m)^2", 0.0, -1.0, 1.0, 0.25},
+          {"beta1", "1/(N·m)", 0.0, -1.0, 1.0, 0.25},
+          {"beta2", "1/(N·m)", 0.0, -1.0, 1.0, 0.25}};
 }
 
 std::vector<ParameterSpec> DeflectionCouplingEffect::Parameters() const {

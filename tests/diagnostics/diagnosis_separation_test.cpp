@@ -24,7 +24,7 @@ Problem OneSample(double time_s, bool joint1 = true, bool joint2 = true) {
 
 Term Fitted(const std::string& name, std::vector<double> parameters) {
   std::shared_ptr<const EffectModel> effect = EffectCatalogue::Global().Create(name);
-  return {effect, std::move(parameters), name};
+  return {effect, std::move(parameters), name, {}, {}};
 }
 
 // k12 = 5 mrad/(N·m) moves joint 1 only when joint 2 is loaded; the other
@@ -49,7 +49,7 @@ TEST(SeparatingExperiment, OnALogOfPosesItHoldsARecordedJointAndNamesNoTime) {
   const BaseModel model(testing::ModelOf(testing::ShortDivot("{}")));
   Problem problem = OneSample(300.0, false, true);
   problem.quasi_static = true;
-  const Term cubic = Fitted("load_dependent_compliance", {0.0, 0.002, 0.0, 0.0});
+  const Term cubic = Fitted("load_dependent_compliance", {0.0, 0.056, 0.0, 0.0});
   const Term none = Fitted("load_dependent_compliance", {0.0, 0.0, 0.0, 0.0});
   const std::string text = SeparatingExperiment(problem, model, {}, cubic, none);
   EXPECT_EQ(text.rfind("hold joint 2 to ", 0), 0u) << text;

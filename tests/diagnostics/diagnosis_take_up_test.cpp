@@ -118,7 +118,7 @@ Curve Generators(bool stiffening) {
 
 // The simulator's own: a dead zone over the paper's widths, γ·τ³ (rad/(N·m)³).
 constexpr double kGamma = -0.006;
-constexpr const char* kCubic = R"({"load_dependent_compliance":{"gamma1":-0.006,"gamma2":-0.006}})";
+constexpr const char* kCubic = R"({"load_dependent_compliance":{"gamma1":-0.1,"gamma2":-0.17}})";
 double Cubic(const models::JointParameters& joint, double tau) {
   const double w = std::max(joint.deadzone_width_nm, joint.tau_min_nm);
   return joint.backlash_rad * models::SmoothSaturation(tau / w) +

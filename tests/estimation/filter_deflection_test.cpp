@@ -40,6 +40,8 @@ SyntheticRun DeflectedRun(const models::ModelParameters& truth, const SyntheticO
     state.encoder_angle_rad = s.encoder_rad;
     state.insertion_depth_m = s.insertion_depth_m;
     state.external_torque_nm = run.true_torque[k];
+    for (int j = 0; j < 2; ++j)
+      state.compliance_rad_per_nm[j] = models::ComplianceAt(truth.joints[j], s.insertion_depth_m);
     const Eigen::Vector2d deflection = effects.Deflection(state);
     for (int j = 0; j < 2; ++j) {
       const auto& jp = truth.joints[j];
@@ -149,13 +151,14 @@ TEST(FilterDeflection, TheCouplingAtItsTrueValueCorrectsTheLoadedRowsAndStaysHon
   ExpectCorrectedAndHonest(c);
 }
 
-// load_dependent_compliance (γ = 0.01 rad/(N·m)³ and β = −0.005 rad/(N·m)²:
-// 5 mrad at 1 N·m, the incremental compliance K + 2β|τ| + 3γτ²): the effect's
-// own slope enters the encoder's row and the held load's increment. Rows
-// loaded past 0.5 N·m.
+// load_dependent_compliance (γ = 0.2 /(N·m)² and β = −0.1 /(N·m) on joint 1:
+// 0.1·K(L), about 5 mrad, at 1 N·m; joint 2, stiffer and loaded less in these
+// runs, 0.8 and −0.2; the incremental compliance K·(1 + 2β|τ| + 3γτ²)): the
+// effect's own slope enters the encoder's row and the held load's increment.
+// Rows loaded past 0.5 N·m.
 TEST(FilterDeflection, ALoadDependentComplianceAtItsTrueValueCorrectsTheLoadedRows) {
   const auto truth = WithEffect("load_dependent_compliance", {"gamma1", "gamma2", "beta1", "beta2"},
-                                {0.01, 0.01, -0.005, -0.005});
+                                {0.2, 0.8, -0.1, -0.2});
   const Comparison c = Compare(truth, [](const SyntheticRun& run, std::size_t k, int j) {
     return std::abs(run.true_torque[k][j]) > 0.5;
   });

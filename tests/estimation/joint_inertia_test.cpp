@@ -23,8 +23,8 @@ TEST(JointInertia, IsTheEffortThatAcceleratesTheArm) {
   s.acceleration_rad_s2 << 2.0, -0.5;
   const auto check = estimation::CheckEffectJacobians(*effect, inertia, s);
   EXPECT_TRUE(check.ok) << check.Report();
-  // ∂τ1/∂a1 = J1 (the state's last two inputs are a1, a2).
-  EXPECT_DOUBLE_EQ(check.autodiff(0, 2 + models::kJointStateSize - 2), 0.15);
+  // ∂τ1/∂a1 = J1 (a1, a2 come before the state's last two inputs, K1 and K2).
+  EXPECT_DOUBLE_EQ(check.autodiff(0, 2 + models::kJointStateSize - 4), 0.15);
 }
 
 }  // namespace

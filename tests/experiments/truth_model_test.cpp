@@ -32,7 +32,7 @@ TEST(TruthModel, ShaftTorqueInvertsThePapersCompliance) {
 
 TEST(TruthModel, ShaftTorqueInvertsANonlinearCoupledLaw) {
   Scenario s = PaperScenario();
-  s.hidden_effects = {{"load_dependent_compliance", {{"gamma1", 0.01}, {"gamma2", 0.02}}},
+  s.hidden_effects = {{"load_dependent_compliance", {{"gamma1", 0.2}, {"gamma2", 0.5}}},
                       {"deflection_coupling", {{"k12", 0.005}, {"k21", -0.004}}}};
   const TruthModel truth(s);
   models::JointState<double> state;

@@ -36,7 +36,7 @@ class TruthModel {
   Eigen::Matrix<double, 2, 4> InternalTorqueJacobian(const models::JointState<double>& state) const;
 
   /// Sum of the deflection effects (rad) at state.external_torque_nm.
-  Eigen::Vector2d Deflection(const models::JointState<double>& state) const;
+  Eigen::Vector2d Deflection(models::JointState<double> state) const;
 
   /// The shaft torque tau (N·m) whose deflection D(tau) equals
   /// `elastic_deflection` on the joints in contact, with tau = 0 on the others
@@ -58,11 +58,13 @@ class TruthModel {
   std::vector<std::string> EffectNames() const;
 
  private:
+  void WithCompliance(models::JointState<double>* state) const;
   struct Term;
   std::vector<Term> internal_;
   std::vector<Term> deflection_;
   Eigen::Vector2d backlash_rad_;
   Eigen::Vector2d centre_rad_;
+  std::array<models::JointParameters, 2> joints_;  ///< K(L) the deflection effects read
 };
 
 }  // namespace pliant::experiments

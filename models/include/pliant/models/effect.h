@@ -91,6 +91,10 @@ struct JointState {
   /// d v / dt (rad/s²; the arm's inertia): the velocity's rate over the same
   /// window as the effort's (estimation::EffectInputs), 0 on a pose log.
   Vec2<T> acceleration_rad_s2 = Vec2<T>::Zero();
+  /// K_j(L): the compliance law of the model the effect extends, at this
+  /// depth (rad/(N·m); deflection effects only). A shaft's stiffening with
+  /// the load is a share of its bend at that depth, so it scales with it.
+  Vec2<T> compliance_rad_per_nm = Vec2<T>::Zero();
 
   /// The same state in another scalar type (e.g. double -> ceres::Jet).
   template <typename U>
@@ -104,13 +108,14 @@ struct JointState {
     out.effort_rate_nm_s = effort_rate_nm_s.template cast<U>();
     out.travel_since_reversal_rad = travel_since_reversal_rad.template cast<U>();
     out.acceleration_rad_s2 = acceleration_rad_s2.template cast<U>();
+    out.compliance_rad_per_nm = compliance_rad_per_nm.template cast<U>();
     return out;
   }
 };
 
 /// Number of scalar inputs in a JointState, in the order
 /// q1, q2, q3, tau_ext1, tau_ext2, v1, v2, t, tau_rate1, tau_rate2, travel1,
-/// travel2, a1, a2 (used by the Jacobian check).
-inline constexpr int kJointStateSize = 14;
+/// travel2, a1, a2, K1, K2 (used by the Jacobian check).
+inline constexpr int kJointStateSize = 16;
 
 }  // namespace pliant::models
