@@ -135,9 +135,10 @@ JointCorrection ComplianceCorrector::Correct(const models::JointState<double>& i
   } else {
     out.deflection_rad = backlash_deadzone_(deadzone_values_.data(), state) + bend;
   }
-  state.compliance_rad_per_nm << models::ComplianceAt(parameters_.joints[0], q[2]),
-      models::ComplianceAt(parameters_.joints[1], q[2]);
-  out.deflection_rad += extra_.Deflection(state);
+  if (!extra_.empty()) {
+    state.compliance_rad_per_nm = models::CompliancesAt(parameters_.joints, q[2]);
+    out.deflection_rad += extra_.Deflection(state);
+  }
   out.corrected_rad = q.head<2>() - out.deflection_rad;
   // A joint the row does not read (no encoder angle: a log of the other
   // joint) has no depth range to leave.

@@ -104,11 +104,6 @@ BaseModel::BaseModel(const models::ModelParameters& parameters,
   }
 }
 
-Eigen::Vector2d BaseModel::ComplianceAt(double depth_m) const {
-  return {models::ComplianceAt(parameters_.joints[0], depth_m),
-          models::ComplianceAt(parameters_.joints[1], depth_m)};
-}
-
 namespace {
 
 // Which joints the log records: a joint whose angle or effort column holds no
@@ -168,6 +163,7 @@ std::vector<Sample> CollectSamples(const io::Log& log, const io::StandardColumns
     Sample s;
     s.row = r;
     s.state = inputs;
+    s.state.compliance_rad_per_nm = models::CompliancesAt(joints, s.state.insertion_depth_m);
     Eigen::Vector2d effort(0.0, 0.0);
     // An unrecorded joint stays at rest at 0 (its prior): nothing is read from it.
     for (int j = 0; j < 2; ++j) {

@@ -116,9 +116,6 @@ class BaseModel {
   double compared_load_nm(int joint) const { return compared_load_nm_[joint]; }
   void set_compared_load_nm(int joint, double load_nm) { compared_load_nm_[joint] = load_nm; }
   const models::ModelParameters& parameters() const { return parameters_; }
-  /// K_j(L) of the parameters' law at `depth_m` (rad/(N·m)), which a deflection
-  /// effect reads as JointState::compliance_rad_per_nm.
-  Eigen::Vector2d ComplianceAt(double depth_m) const;
 
  private:
   template <typename T>
@@ -148,9 +145,10 @@ class BaseModel {
 template <typename T>
 models::Vec2<T> ModelResidual(const Sample& sample, const BaseModel& model,
                               const std::vector<Term>& terms, const std::vector<const T*>& values) {
+  // The parameters' K(L) is in the sample's state (BuildProblem); a refitted
+  // one replaces it.
   models::JointState<T> state = sample.state.Cast<T>();
   const double depth = sample.state.insertion_depth_m;
-  state.compliance_rad_per_nm = model.ComplianceAt(depth).cast<T>();
   for (std::size_t i = 0; i < terms.size(); ++i) {
     if constexpr (std::is_same_v<T, double>) {
       if (terms[i].compliance) state.compliance_rad_per_nm = terms[i].compliance(values[i], depth);

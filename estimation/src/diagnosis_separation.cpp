@@ -26,6 +26,7 @@ Eigen::Vector2d Change(const Sample& typical, const BaseModel& model, const std:
                        const Term& term, const Condition& c) {
   Sample s = typical;
   s.state.insertion_depth_m = c.depth_m;
+  s.state.compliance_rad_per_nm = models::CompliancesAt(model.parameters().joints, c.depth_m);
   s.state.external_torque_nm.setZero();
   s.state.external_torque_nm[c.joint] = c.load_nm;
   s.state.time_s = c.time_s;

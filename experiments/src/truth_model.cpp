@@ -81,8 +81,7 @@ TruthModel::TruthModel(const Scenario& scenario)
 
 // The truth's K(L) at the state's depth, for the deflection effects that scale with it.
 void TruthModel::WithCompliance(models::JointState<double>* state) const {
-  for (int j = 0; j < 2; ++j)
-    state->compliance_rad_per_nm[j] = models::ComplianceAt(joints_[j], state->insertion_depth_m);
+  state->compliance_rad_per_nm = models::CompliancesAt(joints_, state->insertion_depth_m);
 }
 
 TruthModel::~TruthModel() = default;

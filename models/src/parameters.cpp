@@ -155,6 +155,10 @@ double ComplianceAt(const JointParameters& joint, double depth_m) {
                             depth);
 }
 
+Eigen::Vector2d CompliancesAt(const std::array<JointParameters, 2>& joints, double depth_m) {
+  return {ComplianceAt(joints[0], depth_m), ComplianceAt(joints[1], depth_m)};
+}
+
 double BiasTorqueAt(const JointParameters& joint, double angle_rad, double depth_m) {
   if (joint.bias_form == BiasForm::kFourier) {
     const auto& f = joint.bias_fourier;

@@ -161,6 +161,9 @@ std::string ValidateParameters(const ModelParameters& parameters);
 /// Compliance K (rad/(N·m)) of joint `joint` (0 or 1) at depth L, clamped to
 /// the joint's valid depth range.
 double ComplianceAt(const JointParameters& joint, double depth_m);
+/// Both joints' K (rad/(N·m)) at depth L: what a deflection effect reads as
+/// JointState::compliance_rad_per_nm.
+Eigen::Vector2d CompliancesAt(const std::array<JointParameters, 2>& joints, double depth_m);
 
 /// tau0 (N·m) of a joint at its angle q (rad) and depth L (m), in either form.
 double BiasTorqueAt(const JointParameters& joint, double angle_rad, double depth_m);
