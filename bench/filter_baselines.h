@@ -42,15 +42,13 @@ class EkfModel {
       for (int i = 0; i < 4; ++i) coefficients_[4 * j + i] = Jet8(p.joints[j].compliance.cubic.coefficients[i]);
       delta_[j] = p.joints[j].backlash_rad;
       const std::string prefix = "joint" + std::to_string(j + 1) + ".";
-      const double sd_delta = estimation::ParameterStandardDeviation(p, prefix + "backlash_rad");
-      const double sd_beta =
-          estimation::ParameterStandardDeviation(p, prefix + "bias_torque.coefficients[0]");
-      sd_delta_[j] = std::isfinite(o.backlash_sd_rad[j]) ? o.backlash_sd_rad[j]
-                     : std::isfinite(sd_delta)          ? sd_delta
-                                                        : o.kDefaultBacklashSdRad;
-      sd_beta_[j] = std::isfinite(o.effort_offset_sd_nm[j]) ? o.effort_offset_sd_nm[j]
-                    : std::isfinite(sd_beta)                ? sd_beta
-                                                            : o.kDefaultEffortOffsetSdNm;
+      sd_delta_[j] = estimation::ResolvedStandardDeviation(
+          o.backlash_sd_rad[j], p, prefix + "backlash_rad", o.kDefaultBacklashSdRad);
+      sd_width_[j] = estimation::ResolvedStandardDeviation(o.deadzone_width_sd_nm[j], p,
+                                                           prefix + "deadzone_width_nm", 0.0);
+      sd_beta_[j] = estimation::ResolvedStandardDeviation(
+          o.effort_offset_sd_nm[j], p, prefix + "bias_torque.coefficients[0]",
+          o.kDefaultEffortOffsetSdNm);
       width_[j] = estimation::FilterDeadZoneWidth(o, p.joints[j]);
     }
   }
@@ -143,13 +141,14 @@ class EkfModel {
   const estimation::FilterOptions& options() const { return options_; }
   double delta(int j) const { return delta_[j]; }
   double width(int j) const { return width_[j]; }
+  double width_sd(int j) const { return sd_width_[j]; }
 
  private:
   models::ModelParameters parameters_;
   estimation::FilterOptions options_;
   models::ComplianceEffect compliance_;
   Jet8 coefficients_[8];
-  double delta_[2], width_[2], sd_delta_[2], sd_beta_[2];
+  double delta_[2], width_[2], sd_delta_[2], sd_width_[2], sd_beta_[2];
 };
 
 struct FixedSizeTypes {
@@ -241,8 +240,11 @@ class DenseEkf {
     for (int j = 0; j < 2; ++j) {
       const int t = kS * j + 1;
       model_.sure_load_[j] = estimation::SureLoad(model_.options(), x_[t], p_(t, t));
-      first_press[j] = s.tip_fixed &&
-                       walls_[j].Observe(models::BacklashHold(model_.sure_load_[j], model_.width(j)));
+      const double sure = model_.sure_load_[j], width = model_.width(j);
+      const int e = kS * j + estimation::kStateClearance;
+      const bool learns = estimation::ClearanceLearnable(
+          model_.options(), sure, width, model_.width_sd(j), model_.delta(j), p_(e, e));
+      first_press[j] = s.tip_fixed && walls_[j].Observe(models::BacklashHold(sure, width), learns);
       model_.inertial_torque_[j] = motion_[j].InertialTorque(model_.options());
       model_.increment_peak_[j] = motion_[j].increment_peak_rad;
     }
@@ -314,8 +316,8 @@ class DenseEkf {
     const typename Types::M44 innovation_cov = h * ph + r;
     typename Types::M84 gain = innovation_cov.ldlt().solve(ph.transpose()).transpose();
     // Consider states (Schmidt–Kalman), as in the filter: with the tip free s
-    // and e; held, e until the hold has pressed a wall; beta always but in
-    // the unloaded start.
+    // and e; held, e until the hold has pressed a wall and where the load may
+    // not teach it (ClearanceLearnable); beta always but in the unloaded start.
     for (int j = 0; j < 2; ++j) {
       if (!s.tip_fixed) gain.row(kS * j + estimation::kStateScale).setZero();
       if (!s.tip_fixed || (o.clearance_needs_a_wall && !walls_[j].TeachClearance())) {

@@ -8,8 +8,12 @@ one way push after push is taught by a misfit the filter counts as white noise
 With --by-load it then prints how far e moved in total at each size of the filter's load
 estimate, per joint: where the learning happens (in the take-up, on the wall).
 
-Usage: clearance_drift.py PARAMS.json LOG.csv [--by-load] [--build build]   (needs the Python
-module built)
+--option NAME=VALUE (repeatable) sets a filter option (pliant.filter_options() lists them), e.g.
+--option deadzone_width_sd_nm=0 for a take-up width known exactly (its doubt limits what the take-up
+teaches e: ClearanceLearnable).
+
+Usage: clearance_drift.py PARAMS.json LOG.csv [--by-load] [--option NAME=VALUE] [--build build]
+(needs the Python module built)
 """
 import argparse
 import io
@@ -29,6 +33,7 @@ def main():
     parser.add_argument("params")
     parser.add_argument("log")
     parser.add_argument("--by-load", action="store_true")
+    parser.add_argument("--option", action="append", default=[], metavar="NAME=VALUE")
     parser.add_argument("--build", default=os.path.join(os.path.dirname(__file__), "..", "build"))
     args = parser.parse_args()
     sys.path.insert(0, os.path.join(args.build, "python"))
@@ -38,7 +43,8 @@ def main():
     held = rows["tip_fixed"] > 0.5 if "tip_fixed" in rows.dtype.names else np.zeros(len(rows), bool)
     segment = rows["segment"] if "segment" in rows.dtype.names else np.zeros(len(rows))
     nan = float("nan")
-    f = pliant.Filter(pliant.load_parameters(args.params))
+    options = {name: float(value) for name, value in (o.split("=", 1) for o in args.option)}
+    f = pliant.Filter(pliant.load_parameters(args.params), **options)
     print("segment  depth m  peak |tau| N·m   e1, e2 mrad      s1, s2")
     start = 0
     edges = np.array([0.0, 0.1, 0.2, 0.4, 0.7, np.inf])  # N·m

@@ -29,15 +29,6 @@ bool IsPositiveDefinite(const Matrix& p) {
   return Eigen::LLT<Matrix>(p).info() == Eigen::Success;
 }
 
-// The option when it is given (finite), else the parameters' covariance,
-// else the documented default.
-double ResolveSd(double option, const models::ModelParameters& p, const std::string& name,
-                 double fallback) {
-  if (std::isfinite(option)) return option;
-  const double from_covariance = ParameterStandardDeviation(p, name);
-  return std::isfinite(from_covariance) ? from_covariance : fallback;
-}
-
 }  // namespace
 
 // Joint j's prior covariance: diag(σ_tip0², σ_τ0², (δ² + σ_δ²)/3, σ_s², σ_δ², σ_β²);
@@ -75,11 +66,14 @@ ComplianceFilter::Impl::Impl(const models::ModelParameters& p, const FilterOptio
     }
     delta[j] = joint_parameters.backlash_rad;
     const std::string prefix = "joint" + std::to_string(j + 1) + ".";
-    uncertainty[j].clearance_sd_rad = ResolveSd(o.backlash_sd_rad[j], p, prefix + "backlash_rad",
-                                                FilterOptions::kDefaultBacklashSdRad);
-    uncertainty[j].effort_offset_sd_nm =
-        ResolveSd(o.effort_offset_sd_nm[j], p, prefix + "bias_torque.coefficients[0]",
-                  FilterOptions::kDefaultEffortOffsetSdNm);
+    auto& u = uncertainty[j];
+    u.clearance_sd_rad = ResolvedStandardDeviation(o.backlash_sd_rad[j], p, prefix + "backlash_rad",
+                                                   FilterOptions::kDefaultBacklashSdRad);
+    u.width_sd_nm = ResolvedStandardDeviation(o.deadzone_width_sd_nm[j], p,
+                                              prefix + "deadzone_width_nm", 0.0);
+    u.effort_offset_sd_nm = ResolvedStandardDeviation(
+        o.effort_offset_sd_nm[j], p, prefix + "bias_torque.coefficients[0]",
+        FilterOptions::kDefaultEffortOffsetSdNm);
     // The width over which the filter lets the load pin the shaft.
     width[j] = FilterDeadZoneWidth(o, joint_parameters);
   }
@@ -283,7 +277,8 @@ void ComplianceFilter::Impl::ScalarUpdate(int j, Channel channel, const Vector& 
   // of the clamped sweep; docs/validation.md section 5). A reference still teaches them.
   if (consider & kConsiderScale) k[kScale] = 0.0;
   // e, likewise, while the tip is free; held, until the hold's load has
-  // pressed the shaft against a wall (clearance_needs_a_wall says why).
+  // pressed the shaft against a wall (clearance_needs_a_wall says why), and
+  // where the load may not teach it (ClearanceLearnable).
   if (consider & kConsiderClearance) k[kClearance] = 0.0;
   // β is a consider state of a held tip's encoder and effort too, but for
   // samples with a reference. A held tip cannot tell β from the load: across

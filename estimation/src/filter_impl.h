@@ -50,9 +50,9 @@ struct StepTally {
   std::uint32_t flags = 0;
 };
 
-// What the filter does not know about the instrument, per joint: σ_δ, σ_β.
+// What the filter does not know about the instrument, per joint: σ_δ, σ_β, σ_w.
 struct InstrumentUncertainty {
-  double clearance_sd_rad = 0.0;
+  double clearance_sd_rad = 0.0, width_sd_nm = 0.0;
   double effort_offset_sd_nm = 0.0;
 };
 

@@ -75,6 +75,12 @@ bool FilterOptions::IsValid(std::string* error) const {
                          "parameters' covariance) or finite and >= 0 — σ of the clearance in rad, "
                          "e.g. 0.001");
     }
+    if (!(std::isnan(deadzone_width_sd_nm[j]) ||
+          (std::isfinite(deadzone_width_sd_nm[j]) && deadzone_width_sd_nm[j] >= 0.0))) {
+      return Fail(error, "FilterOptions::deadzone_width_sd_nm" + joint + " must be NaN (from the "
+                         "parameters' covariance) or finite and >= 0 — σ of the dead-zone width "
+                         "in N·m, e.g. 0.01");
+    }
     if (!(std::isnan(effort_offset_sd_nm[j]) ||
           (std::isfinite(effort_offset_sd_nm[j]) && effort_offset_sd_nm[j] >= 0.0))) {
       return Fail(error, "FilterOptions::effort_offset_sd_nm" + joint + " must be NaN (from the "

@@ -22,9 +22,23 @@ double ParameterStandardDeviation(const models::ModelParameters& p, const std::s
   return std::sqrt(std::max(0.0, p.covariance->matrix(i, i)));
 }
 
+double ResolvedStandardDeviation(double option_sd, const models::ModelParameters& p,
+                                 const std::string& name, double fallback) {
+  if (std::isfinite(option_sd)) return option_sd;
+  const double from_covariance = ParameterStandardDeviation(p, name);
+  return std::isfinite(from_covariance) ? from_covariance : fallback;
+}
+
 double SureLoad(const FilterOptions& o, double tau_nm, double tau_variance_nm2) {
   const double margin = o.load_margin_sd * std::sqrt(std::max(0.0, tau_variance_nm2));
   return std::copysign(std::max(0.0, std::abs(tau_nm) - margin), tau_nm);
+}
+
+bool ClearanceLearnable(const FilterOptions& o, double sure_load_nm, double width_nm,
+                        double width_sd_nm, double clearance_rad, double clearance_variance_rad2) {
+  if (std::abs(sure_load_nm) >= width_nm + o.load_margin_sd * width_sd_nm) return true;
+  const double floor_rad = clearance_rad * width_sd_nm / width_nm;
+  return clearance_variance_rad2 > floor_rad * floor_rad;
 }
 
 double FilterDeadZoneWidth(const FilterOptions& o, const models::JointParameters& joint) {

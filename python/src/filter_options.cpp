@@ -28,6 +28,7 @@ const std::pair<const char*, Field> kFields[] = {
     {"external_torque_rate_nm", &FilterOptions::external_torque_rate_nm},
     {"compliance_scale_sd", &FilterOptions::compliance_scale_sd},
     {"backlash_sd_rad", &FilterOptions::backlash_sd_rad},
+    {"deadzone_width_sd_nm", &FilterOptions::deadzone_width_sd_nm},
     {"effort_offset_sd_nm", &FilterOptions::effort_offset_sd_nm},
     {"effort_offset_correlation_s", &FilterOptions::effort_offset_correlation_s},
     {"effort_colour_from_log", &FilterOptions::effort_colour_from_log},

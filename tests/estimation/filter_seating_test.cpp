@@ -90,18 +90,36 @@ TEST(ComplianceFilter, SeatingATipAtRestMovesItsEstimateByCountsNotTens) {
 }
 
 // The walls' events: a hold the hint seated forgets its shaft's start at its
-// first press, once; a contact no seat began (no hint) never does.
+// first press, once; a contact no seat began (no hint) never does. The
+// encoder teaches e from a press on, while the load is beyond the take-up.
 TEST(ClearanceWalls, OnlyASeatedHoldForgetsItsStartAndOnlyAtItsFirstPress) {
   ClearanceWalls walls;
-  EXPECT_FALSE(walls.Observe(1.0));  // pressed, but never seated
+  EXPECT_FALSE(walls.Observe(1.0, true));  // pressed, but never seated
   EXPECT_TRUE(walls.TeachClearance());
   walls.Seat();
   EXPECT_FALSE(walls.TeachClearance());
-  EXPECT_TRUE(walls.Observe(0.5 * (1.0 + ClearanceWalls::kPressedHold)));  // the first press
-  EXPECT_FALSE(walls.Observe(1.0));  // the second press of the same hold
+  EXPECT_TRUE(walls.Observe(0.5 * (1.0 + ClearanceWalls::kPressedHold), false));  // first press
+  EXPECT_FALSE(walls.TeachClearance());  // on the wall, inside the take-up
+  EXPECT_FALSE(walls.Observe(1.0, true));  // the second press of the same hold
+  EXPECT_TRUE(walls.TeachClearance());
+  EXPECT_FALSE(walls.Observe(0.5, false));  // back inside the take-up: e considered again
+  EXPECT_FALSE(walls.TeachClearance());
   walls.Seat();
-  EXPECT_FALSE(walls.Observe(0.9 * ClearanceWalls::kPressedHold));
-  EXPECT_TRUE(walls.Observe(ClearanceWalls::kPressedHold));
+  EXPECT_FALSE(walls.Observe(0.9 * ClearanceWalls::kPressedHold, false));
+  EXPECT_TRUE(walls.Observe(ClearanceWalls::kPressedHold, false));
+}
+
+// The take-up teaches e down to (δ·σ_w/w)², a load beyond w + 2σ_w always
+// (load_margin_sd 2); a width known exactly, always.
+TEST(ClearanceLearnable, TheTakeUpTeachesEAsFarAsItsWidthIsKnown) {
+  const FilterOptions o;
+  ASSERT_EQ(o.load_margin_sd, 2.0);
+  const double delta = 0.008, width = 0.1, width_sd = 0.025;  // floor: 2 mrad
+  EXPECT_TRUE(ClearanceLearnable(o, 0.05, width, width_sd, delta, 4.1e-6));
+  EXPECT_FALSE(ClearanceLearnable(o, 0.05, width, width_sd, delta, 3.9e-6));
+  EXPECT_FALSE(ClearanceLearnable(o, -0.149, width, width_sd, delta, 1e-6));
+  EXPECT_TRUE(ClearanceLearnable(o, -0.151, width, width_sd, delta, 1e-6));
+  EXPECT_TRUE(ClearanceLearnable(o, 0.0, width, 0.0, delta, 1e-12));
 }
 
 }  // namespace

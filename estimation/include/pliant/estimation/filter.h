@@ -226,6 +226,11 @@ class ComplianceFilter {
 /// the parameters' covariance; NaN when they carry none or not that name.
 double ParameterStandardDeviation(const models::ModelParameters& parameters,
                                   const std::string& name);
+/// An option's σ when it is given (finite), else the parameters' covariance
+/// of the named parameter, else the fallback: how FilterOptions' NaN
+/// ("from the parameters") σ are resolved, by the filter and the baselines.
+double ResolvedStandardDeviation(double option_sd, const models::ModelParameters& parameters,
+                                 const std::string& name, double fallback);
 
 /// The output quantities of a joint-block pair, computed the same way for the
 /// filter and the smoother: corrected angles, covariance, tip correction.

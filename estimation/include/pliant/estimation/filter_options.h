@@ -192,6 +192,11 @@ struct FilterOptions {
   /// of "jointN.backlash_rad" when they carry one, else
   /// kDefaultBacklashSdRad. 0: the clearance is known exactly.
   Eigen::Vector2d backlash_sd_rad{kFromParameters, kFromParameters};
+  /// σ_w per joint (N·m): how well the parameters know the dead-zone width,
+  /// the take-up's shape. NaN (the default): the parameters' covariance of
+  /// "jointN.deadzone_width_nm" when they carry one, else 0 (exact). The
+  /// take-up then teaches e no better than δ·σ_w/w (ClearanceLearnable).
+  Eigen::Vector2d deadzone_width_sd_nm{kFromParameters, kFromParameters};
   /// σ_β per joint (N·m): a constant offset the bias torque tau0 may miss.
   /// 0 (the default): off, the bias torque is taken as exact. NaN: the
   /// parameters' covariance of "jointN.bias_torque.coefficients[0]" (the

@@ -29,24 +29,29 @@ struct ClearanceWalls {
   /// A load holds the shaft on its wall from this hold g (BacklashHold) up.
   static constexpr double kPressedHold = 0.99;
   bool pressed = false;
+  /// This step's load may teach e (ClearanceLearnable).
+  bool learnable = false;
   /// A hold the tip_fixed hint began (or a release began anew): its shaft's
   /// start is the uniform one below. Never set without the hint, whose
   /// contacts have no seat to forget from.
   bool seated = false;
   void Seat() {
-    pressed = false;
+    pressed = learnable = false;
     seated = true;
   }
-  /// hold: BacklashHold of the load the filter is sure of. True at the
-  /// first press since a seat: the tip's variance then gains
-  /// ForgottenStartVariance, so that it forgets where the shaft started.
-  bool Observe(double hold) {
+  /// hold: BacklashHold of the load the filter is sure of; learns: whether
+  /// that load may teach e (ClearanceLearnable). True at the first press
+  /// since a seat: the tip's variance then gains ForgottenStartVariance, so
+  /// that it forgets where the shaft started.
+  bool Observe(double hold, bool learns) {
     const bool first = !pressed && hold >= kPressedHold;
     pressed = pressed || first;
+    learnable = learns;
     return first && seated;
   }
-  /// The encoder may teach e.
-  bool TeachClearance() const { return pressed; }
+  /// The encoder may teach e: a wall was pressed since the seat, and this
+  /// step's load may teach it.
+  bool TeachClearance() const { return pressed && learnable; }
   /// The tip's added variance at the first press, rad², from the start's
   /// prior variance (δ² + σ_δ²)/3. The start is uniform in ±(δ + e); the
   /// Gaussian prior on b held it as information about the held tip (tip + b
@@ -70,6 +75,18 @@ inline bool InUnloadedStart(const FilterOptions& options, double elapsed_s) {
 /// sure of: tau moved toward 0 by options.load_margin_sd standard deviations,
 /// 0 when it would cross zero.
 double SureLoad(const FilterOptions& options, double tau_nm, double tau_variance_nm2);
+/// Whether a held tip's encoder may teach the clearance error e at this sure
+/// load (N·m), for a dead-zone width w ± σ_w (N·m) and clearance δ (rad) whose
+/// error e has variance P_ee (rad²). Inside the take-up the shaft's place
+/// δ·S(τ/w) moves with w: S(τ/w) ≈ τ/w there, so a width off by σ_w moves it by
+/// the share σ_w/w of the way, as an error of δ·σ_w/w in e would, on every
+/// sample alike. The take-up then teaches e until P_ee is down to
+/// (δ·σ_w/w)², and no further. From |load| ≥ w + m·σ_w on (m = load_margin_sd)
+/// the shaft is on its wall whatever the width, and e always learns. σ_w = 0
+/// (a width known exactly): always (docs/decisions/
+/// take-up-teaches-the-clearance-as-far-as-its-width-is-known.md).
+bool ClearanceLearnable(const FilterOptions& options, double sure_load_nm, double width_nm,
+                        double width_sd_nm, double clearance_rad, double clearance_variance_rad2);
 /// The dead-zone width w (N·m) the filter uses for a joint: the parameters'
 /// deadzone_width_nm (tau_min_nm when that is 0), never below
 /// options.backlash_width_noise_multiple × the effort noise — an identified
