@@ -242,9 +242,11 @@ class DenseEkf {
       model_.sure_load_[j] = estimation::SureLoad(model_.options(), x_[t], p_(t, t));
       const double sure = model_.sure_load_[j], width = model_.width(j);
       const int e = kS * j + estimation::kStateClearance;
-      const bool learns = estimation::ClearanceLearnable(
-          model_.options(), sure, width, model_.width_sd(j), model_.delta(j), p_(e, e));
-      first_press[j] = s.tip_fixed && walls_[j].Observe(models::BacklashHold(sure, width), learns);
+      first_press[j] =
+          s.tip_fixed && walls_[j].Observe(models::BacklashHold(sure, width),
+                                           estimation::ClearanceLearnable(
+                                               model_.options(), sure, width, model_.width_sd(j),
+                                               model_.delta(j), p_(e, e)));
       model_.inertial_torque_[j] = motion_[j].InertialTorque(model_.options());
       model_.increment_peak_[j] = motion_[j].increment_peak_rad;
     }

@@ -45,9 +45,11 @@ void ComplianceFilter::Impl::Predict(int j, double dt, bool tip_fixed, bool seat
   const double hold = models::BacklashHold(sure_load, width[j]);
   step_hold[j] = hold;
   if (seated) walls[j].Seat();
-  const bool learns = ClearanceLearnable(o, sure_load, width[j], uncertainty[j].width_sd_nm,
-                                         delta[j], s.covariance(kClearance, kClearance));
-  const bool first_press = tip_fixed && walls[j].Observe(hold, learns);
+  // Only a held tip's walls are observed (a free tip's e is a consider state).
+  const bool first_press =
+      tip_fixed && walls[j].Observe(hold, ClearanceLearnable(o, sure_load, width[j],
+                                                             uncertainty[j].width_sd_nm, delta[j],
+                                                             s.covariance(kClearance, kClearance)));
   const StateJet next = models::BacklashHysteresisStep(b, tau, clearance, width[j], relax, hold);
   // How firmly the load holds the shaft on a wall: S² = 1 beyond the width,
   // 0 at no load (BacklashProcessVariance).
